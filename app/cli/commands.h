@@ -1,0 +1,17 @@
+// Subcommands of the `hdrfusion` tool. Each registers its options on the parent app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace hdrf::cli {
+
+struct Command {
+  CLI::App* app;            // the subcommand, to ask whether it was chosen
+  std::function<int()> run;  // runs it; returns the exit status
+};
+
+Command AddInfoCommand(CLI::App& app);
+Command AddRadianceCommand(CLI::App& app);
+
+}  // namespace hdrf::cli

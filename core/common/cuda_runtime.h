@@ -1,0 +1,33 @@
+// The CUDA runtime as the rest of the core sees it: whether a GPU can be used, and raw
+// device memory. Without a CUDA build every call that needs the GPU throws hdrf::Error
+// saying so, so call sites need no #ifdef.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace hdrf {
+
+enum class Device { kCpu, kCuda };
+
+inline const char* DeviceName(Device d) { return d == Device::kCuda ? "cuda" : "cpu"; }
+
+// True when this build has the CUDA backend and a usable GPU is present. When false and
+// `why` is given, it receives a one-line reason a user can act on.
+bool CudaAvailable(std::string* why = nullptr);
+
+// Throws hdrf::Error explaining that this build has no CUDA backend.
+[[noreturn]] void ThrowNoCudaBackend();
+
+// Name and memory of GPU 0, for reports ("" when none).
+std::string CudaDeviceDescription();
+
+namespace cuda {
+void* Malloc(std::size_t bytes);
+void Free(void* ptr) noexcept;
+void CopyHostToDevice(void* dst, const void* src, std::size_t bytes);
+void CopyDeviceToHost(void* dst, const void* src, std::size_t bytes);
+void Synchronize();
+}  // namespace cuda
+
+}  // namespace hdrf

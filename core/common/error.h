@@ -1,0 +1,41 @@
+// Errors that a user can act on: every message names the file, line or setting at fault.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace hdrf {
+
+// Thrown for bad configuration and bad input. what() is a complete, one-line sentence.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// "<file>: <what>" or "<file>:<line>: <what>" (line is 1-based; 0 means no line).
+std::string FormatInputMessage(const std::filesystem::path& file, int line, const std::string& what);
+
+// Bad input found in a file: names the file and, where known, the line.
+class InputError : public Error {
+ public:
+  InputError(const std::filesystem::path& file, int line, const std::string& what)
+      : Error(FormatInputMessage(file, line, what)), file_(file), line_(line) {}
+  InputError(const std::filesystem::path& file, const std::string& what)
+      : InputError(file, 0, what) {}
+  const std::filesystem::path& file() const { return file_; }
+  int line() const { return line_; }
+
+ private:
+  std::filesystem::path file_;
+  int line_;
+};
+
+// A setting that cannot work, named as the user wrote it (e.g. "--volume-res").
+class SettingError : public Error {
+ public:
+  SettingError(const std::string& setting, const std::string& what)
+      : Error("setting '" + setting + "': " + what) {}
+};
+
+}  // namespace hdrf

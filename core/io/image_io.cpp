@@ -1,0 +1,115 @@
+#include "io/image_io.h"
+
+#include <cmath>
+#include <cstring>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/error.h"
+#include "io/text_table.h"
+
+namespace hdrf::io {
+
+namespace {
+
+const char* DepthName(int cv_depth) {
+  switch (cv_depth) {
+    case CV_8U: return "8-bit";
+    case CV_8S: return "8-bit signed";
+    case CV_16U: return "16-bit";
+    case CV_16S: return "16-bit signed";
+    case CV_32F: return "32-bit float";
+    default: return "unusual";
+  }
+}
+
+cv::Mat Load(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) throw InputError(file, "image file is missing");
+  cv::Mat m;
+  try {
+    m = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError(file, std::string("cannot be decoded as an image: ") + e.what());
+  }
+  if (m.empty()) throw InputError(file, "cannot be decoded as an image (corrupt or truncated?)");
+  return m;
+}
+
+void Save(const std::filesystem::path& file, const cv::Mat& m) {
+  const auto tmp = TemporarySibling(file);
+  bool ok = false;
+  try {
+    ok = cv::imwrite(tmp.string(), m);
+  } catch (const cv::Exception& e) {
+    ok = false;
+  }
+  if (!ok) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw InputError(file, "cannot be written as PNG");
+  }
+  CommitTemporary(tmp, file);
+}
+
+}  // namespace
+
+ColorImage ReadColorImage(const std::filesystem::path& file) {
+  cv::Mat m = Load(file);
+  if (m.depth() != CV_8U)
+    throw InputError(file, std::string("colour image must be 8-bit, found ") +
+                               DepthName(m.depth()));
+  if (m.channels() != 3 && m.channels() != 4)
+    throw InputError(file, "colour image must have 3 channels (RGB), found " +
+                               std::to_string(m.channels()));
+  cv::Mat rgb;
+  cv::cvtColor(m, rgb, m.channels() == 4 ? cv::COLOR_BGRA2RGB : cv::COLOR_BGR2RGB);
+  ColorImage out(rgb.cols, rgb.rows);
+  for (int y = 0; y < rgb.rows; ++y)
+    std::memcpy(&out(0, y), rgb.ptr<std::uint8_t>(y), std::size_t(rgb.cols) * 3);
+  return out;
+}
+
+DepthRawImage ReadDepthImage(const std::filesystem::path& file) {
+  cv::Mat m = Load(file);
+  if (m.depth() != CV_16U)
+    throw InputError(file, std::string("depth image must be 16-bit unsigned, found ") +
+                               DepthName(m.depth()));
+  if (m.channels() != 1)
+    throw InputError(file, "depth image must have 1 channel, found " +
+                               std::to_string(m.channels()));
+  DepthRawImage out(m.cols, m.rows);
+  for (int y = 0; y < m.rows; ++y)
+    std::memcpy(&out(0, y), m.ptr<std::uint16_t>(y), std::size_t(m.cols) * 2);
+  return out;
+}
+
+void WriteColorPng(const std::filesystem::path& file, const ColorImage& image) {
+  cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8*>(image.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  Save(file, bgr);
+}
+
+void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image) {
+  cv::Mat m(image.height(), image.width(), CV_16UC1, const_cast<std::uint16_t*>(image.data()));
+  Save(file, m);
+}
+
+DepthImage DepthToMetres(const DepthRawImage& raw, double scale) {
+  DepthImage out(raw.width(), raw.height());
+  const float inv = float(1.0 / scale);
+  for (std::size_t i = 0; i < raw.size(); ++i) out[i] = float(raw[i]) * inv;
+  return out;
+}
+
+DepthRawImage DepthFromMetres(const DepthImage& depth_m, double scale) {
+  DepthRawImage out(depth_m.width(), depth_m.height());
+  for (std::size_t i = 0; i < depth_m.size(); ++i) {
+    const double v = std::round(double(depth_m[i]) * scale);
+    out[i] = (std::isfinite(v) && v > 0) ? std::uint16_t(std::min(v, 65535.0)) : 0;
+  }
+  return out;
+}
+
+}  // namespace hdrf::io

@@ -1,0 +1,25 @@
+// PNG colour and 16-bit depth images, checked against what FORMATS.md promises.
+#pragma once
+
+#include <filesystem>
+
+#include "common/image.h"
+
+namespace hdrf::io {
+
+// 8-bit, 3-channel colour (an alpha channel is dropped). Throws InputError naming the file
+// when it is missing, unreadable, or has the wrong bit depth or channel count.
+ColorImage ReadColorImage(const std::filesystem::path& file);
+
+// 16-bit, 1-channel depth in sensor units. Same checks as above.
+DepthRawImage ReadDepthImage(const std::filesystem::path& file);
+
+// Lossless PNG writers (through a temporary file and a rename).
+void WriteColorPng(const std::filesystem::path& file, const ColorImage& image);
+void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image);
+
+// Raw depth to metres (0 stays 0 = no data).
+DepthImage DepthToMetres(const DepthRawImage& raw, double scale);
+DepthRawImage DepthFromMetres(const DepthImage& depth_m, double scale);
+
+}  // namespace hdrf::io

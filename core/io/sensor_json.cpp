@@ -1,0 +1,132 @@
+#include "io/sensor_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/error.h"
+#include "io/text_table.h"
+
+namespace hdrf::io {
+
+using nlohmann::json;
+
+namespace {
+
+const json& Require(const std::filesystem::path& file, const json& obj, const char* key,
+                    const std::string& where) {
+  if (!obj.is_object() || !obj.contains(key))
+    throw InputError(file, "missing required key '" + where + key + "'");
+  return obj.at(key);
+}
+
+double Number(const std::filesystem::path& file, const json& v, const std::string& key) {
+  if (!v.is_number()) throw InputError(file, "'" + key + "' must be a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw InputError(file, "'" + key + "' is not a finite number");
+  return d;
+}
+
+double Positive(const std::filesystem::path& file, const json& v, const std::string& key) {
+  const double d = Number(file, v, key);
+  if (!(d > 0)) throw InputError(file, "'" + key + "' must be positive");
+  return d;
+}
+
+// JSON has no NaN; nlohmann reads a literal NaN as a syntax error and null where a number
+// belongs means a writer put NaN there, so both are reported as "not a finite number".
+std::array<float, 3> Triple(const std::filesystem::path& file, const json& v,
+                            const std::string& key) {
+  if (!v.is_array() || v.size() != 3)
+    throw InputError(file, "'" + key + "' must be an array of 3 numbers [r, g, b]");
+  std::array<float, 3> out{};
+  for (int c = 0; c < 3; ++c) {
+    const double d = Number(file, v[c], key + "[" + std::to_string(c) + "]");
+    if (d < 0) throw InputError(file, "'" + key + "' must not be negative");
+    out[c] = float(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+SensorInfo ReadSensorJson(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in)
+    throw InputError(file, std::filesystem::exists(file) ? "cannot be opened for reading"
+                                                         : "file is missing");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    // e.what() carries "line L, column C"; keep the part after the library's prefix.
+    std::string msg = e.what();
+    const auto pos = msg.find("parse error");
+    throw InputError(file, "is not valid JSON (" + msg.substr(pos == std::string::npos ? 0 : pos) +
+                               ")");
+  }
+  if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
+
+  SensorInfo s;
+  const json& cam = Require(file, j, "camera", "");
+  const double w = Positive(file, Require(file, cam, "width", "camera."), "camera.width");
+  const double h = Positive(file, Require(file, cam, "height", "camera."), "camera.height");
+  if (w != std::floor(w) || h != std::floor(h) || w > 65535 || h > 65535)
+    throw InputError(file, "'camera.width' and 'camera.height' must be whole pixel counts");
+  s.camera.width = int(w);
+  s.camera.height = int(h);
+  s.camera.fx = float(Positive(file, Require(file, cam, "fx", "camera."), "camera.fx"));
+  s.camera.fy = float(Positive(file, Require(file, cam, "fy", "camera."), "camera.fy"));
+  s.camera.cx = float(Number(file, Require(file, cam, "cx", "camera."), "camera.cx"));
+  s.camera.cy = float(Number(file, Require(file, cam, "cy", "camera."), "camera.cy"));
+  const json& depth = Require(file, j, "depth", "");
+  s.depth_scale = Positive(file, Require(file, depth, "scale", "depth."), "depth.scale");
+
+  if (j.contains("response")) {
+    const json& inv = Require(file, j["response"], "inverse", "response.");
+    radiometry::InverseResponse r;
+    const char* ch[3] = {"r", "g", "b"};
+    for (int c = 0; c < 3; ++c) {
+      const std::string key = std::string("response.inverse.") + ch[c];
+      const json& t = Require(file, inv, ch[c], "response.inverse.");
+      if (!t.is_array() || t.size() != 256)
+        throw InputError(file, "'" + key + "' must be an array of 256 numbers, found " +
+                                   (t.is_array() ? std::to_string(t.size()) : "no array"));
+      for (int i = 0; i < 256; ++i)
+        r.table[c][i] = float(Number(file, t[i], key + "[" + std::to_string(i) + "]"));
+    }
+    r.Check(file.string());
+    s.response = r;
+  }
+  if (j.contains("noise")) {
+    const json& n = j["noise"];
+    radiometry::NoiseModel m;
+    m.sigma_s = Triple(file, Require(file, n, "sigma_s", "noise."), "noise.sigma_s");
+    m.sigma_c = Triple(file, Require(file, n, "sigma_c", "noise."), "noise.sigma_c");
+    s.noise = m;
+  }
+  return s;
+}
+
+void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
+  json j;
+  j["camera"] = {{"width", s.camera.width}, {"height", s.camera.height}, {"fx", s.camera.fx},
+                 {"fy", s.camera.fy},       {"cx", s.camera.cx},         {"cy", s.camera.cy}};
+  j["depth"] = {{"scale", s.depth_scale}};
+  if (s.response) {
+    s.response->Check(file.string());
+    const char* ch[3] = {"r", "g", "b"};
+    json inv;
+    for (int c = 0; c < 3; ++c)
+      inv[ch[c]] = std::vector<float>(s.response->table[c].begin(), s.response->table[c].end());
+    j["response"] = {{"inverse", inv}};
+  }
+  if (s.noise) {
+    s.noise->Check(file.string());
+    j["noise"] = {{"sigma_s", s.noise->sigma_s}, {"sigma_c", s.noise->sigma_c}};
+  }
+  WriteFileAtomically(file, j.dump(2) + "\n");
+}
+
+}  // namespace hdrf::io

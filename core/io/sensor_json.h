@@ -1,0 +1,15 @@
+// sensor.json reader and writer (FORMATS.md).
+#pragma once
+
+#include <filesystem>
+
+#include "radiometry/sensor.h"
+
+namespace hdrf::io {
+
+// Throws InputError naming the file (and the JSON line, for syntax errors) and the key.
+SensorInfo ReadSensorJson(const std::filesystem::path& file);
+
+void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& sensor);
+
+}  // namespace hdrf::io

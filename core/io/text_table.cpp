@@ -1,0 +1,79 @@
+#include "io/text_table.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace hdrf::io {
+
+std::vector<TextRow> ReadTextTable(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) {
+    throw InputError(file, std::filesystem::exists(file) ? "cannot be opened for reading"
+                                                         : "file is missing");
+  }
+  std::vector<TextRow> rows;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    std::istringstream ss(text);
+    TextRow row{line, {}};
+    std::string tok;
+    while (ss >> tok) row.fields.push_back(tok);
+    if (row.fields.empty() || row.fields[0][0] == '#') continue;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+double ParseNumber(const std::filesystem::path& file, const TextRow& row, std::size_t field,
+                   const char* what) {
+  if (field >= row.fields.size())
+    throw InputError(file, row.line,
+                     std::string("line is truncated: missing ") + what + " (field " +
+                         std::to_string(field + 1) + ")");
+  const std::string& s = row.fields[field];
+  double v = 0;
+  const char* first = s.data();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size())
+    throw InputError(file, row.line, std::string("cannot parse ") + what + " '" + s + "'");
+  if (!std::isfinite(v))
+    throw InputError(file, row.line, std::string(what) + " is not a finite number ('" + s + "')");
+  return v;
+}
+
+std::filesystem::path TemporarySibling(const std::filesystem::path& file) {
+  std::filesystem::path tmp = file;
+  tmp.replace_filename("." + file.stem().string() + ".partial" + file.extension().string());
+  return tmp;
+}
+
+void CommitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& file) {
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError(file, "cannot be written (rename failed)");
+  }
+}
+
+void WriteFileAtomically(const std::filesystem::path& file, const std::string& content) {
+  const auto tmp = TemporarySibling(file);
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw InputError(file, "cannot be opened for writing");
+    out << content;
+    out.flush();
+    if (!out) throw InputError(file, "write failed (disk full?)");
+  }
+  CommitTemporary(tmp, file);
+}
+
+}  // namespace hdrf::io

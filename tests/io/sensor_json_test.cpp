@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include "io/sensor_json.h"
+#include "support/test_support.h"
+
+namespace hdrf::io {
+namespace {
+
+using test::ExpectErrorContaining;
+using test::TempDir;
+using test::WriteText;
+
+const char* kMinimal =
+    R"({"camera": {"width": 640, "height": 480, "fx": 525.0, "fy": 525.0, "cx": 319.5,
+        "cy": 239.5}, "depth": {"scale": 5000.0}, "future_key": {"x": 1}})";
+
+std::string WithResponse(const std::string& r_values) {
+  std::string g, b;
+  for (int i = 0; i < 256; ++i) g += (i ? "," : "") + std::to_string(i * 0.01);
+  b = g;
+  return R"({"camera": {"width": 4, "height": 2, "fx": 5, "fy": 5, "cx": 1.5, "cy": 0.5},
+            "depth": {"scale": 1000}, "response": {"inverse": {"r": [)" +
+         r_values + "], \"g\": [" + g + "], \"b\": [" + b + "]}}}";
+}
+
+std::string Ramp(int n, int bad_at = -1, const char* bad = "") {
+  std::string s;
+  for (int i = 0; i < n; ++i) s += (i ? "," : "") + (i == bad_at ? bad : std::to_string(i * 0.02));
+  return s;
+}
+
+TEST(SensorJson, ReadsMinimalAndIgnoresUnknownKeys) {
+  TempDir dir;
+  WriteText(dir / "sensor.json", kMinimal);
+  const SensorInfo s = ReadSensorJson(dir / "sensor.json");
+  EXPECT_EQ(s.camera.width, 640);
+  EXPECT_FLOAT_EQ(s.camera.cy, 239.5f);
+  EXPECT_DOUBLE_EQ(s.depth_scale, 5000.0);
+  EXPECT_FALSE(s.response.has_value());
+  EXPECT_FALSE(s.noise.has_value());
+}
+
+TEST(SensorJson, RoundTripWithResponseAndNoise) {
+  TempDir dir;
+  SensorInfo s;
+  s.camera = {320, 240, 270.5f, 271.25f, 159.5f, 119.25f};
+  s.depth_scale = 1000;
+  radiometry::InverseResponse r;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) r.table[c][i] = 0.01f * float(c + 1) + 0.0371f * float(i * i);
+  s.response = r;
+  s.noise = radiometry::NoiseModel{{0.021f, 0.032f, 0.0213f}, {0.0001f, 0.0002f, 0.0003f}};
+  WriteSensorJson(dir / "sensor.json", s);
+  const SensorInfo b = ReadSensorJson(dir / "sensor.json");
+  EXPECT_EQ(b.camera.width, 320);
+  EXPECT_EQ(b.camera.fy, s.camera.fy);
+  EXPECT_EQ(b.depth_scale, 1000);
+  ASSERT_TRUE(b.response && b.noise);
+  EXPECT_EQ(b.response->table, r.table);  // float -> JSON -> float is exact
+  EXPECT_EQ(b.noise->sigma_s, s.noise->sigma_s);
+  EXPECT_EQ(b.noise->sigma_c, s.noise->sigma_c);
+}
+
+TEST(SensorJson, MissingFileAndInvalidJson) {
+  TempDir dir;
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"sensor.json", "missing"});
+  WriteText(dir / "sensor.json", "{\n \"camera\": {\n  \"width\": 640,,\n}");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "not valid JSON", "line 3"});
+}
+
+TEST(SensorJson, MissingRequiredKeysNamed) {
+  TempDir dir;
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": 1, "fy": 1,
+                                    "cx": 1, "cy": 1}})");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"sensor.json", "'depth'"});
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "fx": 1, "fy": 1, "cx": 1,
+                                    "cy": 1}, "depth": {"scale": 1}})");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "camera.height"});
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": -1, "fy": 1,
+                                    "cx": 1, "cy": 1}, "depth": {"scale": 1}})");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"camera.fx", "positive"});
+}
+
+TEST(SensorJson, NonMonotonicResponseRejected) {
+  TempDir dir;
+  WriteText(dir / "sensor.json", WithResponse(Ramp(256, 200, "0.5")));
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "channel r", "monotonic", "level 200"});
+}
+
+TEST(SensorJson, ResponseWithNaNOrWrongLengthRejected) {
+  TempDir dir;
+  WriteText(dir / "sensor.json", WithResponse(Ramp(256, 17, "null")));
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "response.inverse.r[17]"});
+  WriteText(dir / "sensor.json", WithResponse(Ramp(255)));
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "256 numbers", "255"});
+  WriteText(dir / "sensor.json", WithResponse(Ramp(256, 3, "NaN")));
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                        {"sensor.json", "not valid JSON"});
+}
+
+}  // namespace
+}  // namespace hdrf::io

@@ -1,0 +1,46 @@
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "radiometry/radiance.h"
+#include "support/test_support.h"
+
+namespace hdrf::radiometry {
+namespace {
+
+TEST(Radiance, InverseResponseDividedByExposure) {
+  InverseResponse r;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) r.table[c][i] = float(i) * float(c + 1);
+  ColorImage img(3, 2);
+  img(0, 0) = {10, 20, 30};
+  img(2, 1) = {255, 0, 128};
+  RadianceImage out;
+  ConvertToRadiance(img, r, 4.0f, out);
+  ASSERT_EQ(out.width(), 3);
+  ASSERT_EQ(out.height(), 2);
+  EXPECT_FLOAT_EQ(out(0, 0).x, 10.f / 4.f);
+  EXPECT_FLOAT_EQ(out(0, 0).y, 40.f / 4.f);
+  EXPECT_FLOAT_EQ(out(0, 0).z, 90.f / 4.f);
+  EXPECT_FLOAT_EQ(out(2, 1).x, 255.f / 4.f);
+  EXPECT_FLOAT_EQ(out(2, 1).y, 0.f);
+  EXPECT_FLOAT_EQ(out(2, 1).z, 384.f / 4.f);
+}
+
+TEST(Radiance, RejectsNonPositiveExposure) {
+  ColorImage img(2, 2);
+  RadianceImage out;
+  test::ExpectErrorContaining(
+      [&] { ConvertToRadiance(img, InverseResponse::Srgb(), 0.f, out); }, {"exposure"});
+}
+
+TEST(Radiance, CudaRequestWithoutCudaBuildIsAClearError) {
+  if (HDRF_HAS_CUDA) GTEST_SKIP() << "this build has the CUDA backend";
+  ColorImage img(2, 2);
+  RadianceImage out;
+  test::ExpectErrorContaining(
+      [&] { ConvertToRadiance(img, InverseResponse::Srgb(), 1.f, out, Device::kCuda); },
+      {"no CUDA backend", "--device cpu"});
+}
+
+}  // namespace
+}  // namespace hdrf::radiometry

@@ -1,0 +1,69 @@
+#include "support/test_support.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace hdrf::test {
+
+namespace fs = std::filesystem;
+
+TempDir::TempDir() {
+  std::random_device rd;
+  const auto base = fs::temp_directory_path();
+  for (int i = 0; i < 100; ++i) {
+    path_ = base / ("hdrf_test_" + std::to_string(rd()));
+    if (fs::create_directory(path_)) return;
+  }
+  throw std::runtime_error("cannot create a temporary folder");
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+fs::path SharedDataDir() {
+  if (const char* env = std::getenv("HDRF_DATA"); env && *env) {
+    return fs::is_directory(env) ? fs::path(env) : fs::path();
+  }
+  const fs::path p = HDRF_SHARED_DATA_DIR;
+  return fs::is_directory(p) ? p : fs::path();
+}
+
+fs::path SharedData(const std::string& relative) {
+  const fs::path dir = SharedDataDir();
+  if (dir.empty()) return {};
+  const fs::path p = dir / relative;
+  return fs::exists(p) ? p : fs::path();
+}
+
+void WriteText(const fs::path& file, const std::string& text) {
+  fs::create_directories(file.parent_path());
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+std::string ReadText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string ExpectErrorContaining(const std::function<void()>& fn,
+                                  std::initializer_list<std::string> needles) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    for (const auto& n : needles)
+      EXPECT_NE(msg.find(n), std::string::npos) << "message '" << msg << "' lacks '" << n << "'";
+    return msg;
+  }
+  ADD_FAILURE() << "expected an error, none was thrown";
+  return {};
+}
+
+}  // namespace hdrf::test

@@ -1,0 +1,48 @@
+// Helpers shared by the tests: temporary folders, the shared real-data folder, and
+// matchers for error messages.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace hdrf::test {
+
+// A fresh, empty folder under the system temp dir, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& s) const { return path_ / s; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// ../shared/data (or $HDRF_DATA) if it exists, else empty.
+std::filesystem::path SharedDataDir();
+
+// The path to a file in the shared data, or empty (the caller skips with a message).
+std::filesystem::path SharedData(const std::string& relative);
+
+void WriteText(const std::filesystem::path& file, const std::string& text);
+std::string ReadText(const std::filesystem::path& file);
+
+// Runs fn, expects it to throw a std::exception whose message contains every needle.
+// Returns the message.
+std::string ExpectErrorContaining(const std::function<void()>& fn,
+                                  std::initializer_list<std::string> needles);
+
+}  // namespace hdrf::test
+
+#define HDRF_SKIP_WITHOUT(path_expr, what)                                              \
+  do {                                                                                  \
+    if ((path_expr).empty())                                                            \
+      GTEST_SKIP() << "shared data not present (" << (what)                             \
+                   << "); put ../shared/data beside the checkout or set HDRF_DATA";   \
+  } while (0)
