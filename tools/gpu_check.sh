@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# GPU checks: builds the core and its tests for sm_90 with CMake (only Eigen, OpenMP,
+# GoogleTest and CUDA are needed) and runs them, the `gpu` parity tests among them.
+#
+#   On a machine with an NVIDIA GPU:      tools/gpu_check.sh
+#   Through the workplace's device tool:  run command "tools/gpu_check.sh" (logs land in $OUT)
+#
+# Exit status is non-zero if the build fails, a test fails, or a `gpu` test was skipped
+# (a GPU check that did not touch the GPU is not a pass).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${OUT:-build-gpu/logs}"
+mkdir -p "$out"
+{
+  echo "== $(date -u +%FT%TZ) $(uname -m) $(nproc) cores"
+  nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader || true
+  nvcc --version | tail -n 2
+  cmake --version | head -n 1
+} | tee "$out/gpu_env.txt"
+
+cmake --preset core-gpu -DHDRF_SHARED_DATA_DIR=/nonexistent 2>&1 | tail -n 3
+cmake --build --preset core-gpu -j "$(nproc)" 2>&1 | tail -n 3
+set +e
+ctest --preset core-gpu -j 4 2>&1 | tee "$out/ctest_all.txt" | tail -n 15
+all=${PIPESTATUS[0]}
+ctest --preset core-gpu -L gpu -V 2>&1 | tee "$out/ctest_gpu.txt" | grep -E "GPU:|parity|PASSED|FAILED|SKIPPED|OK \]" 
+gpu=${PIPESTATUS[0]}
+set -e
+if grep -q "\[  SKIPPED \]" "$out/ctest_gpu.txt"; then
+  echo "gpu_check: a gpu test was SKIPPED: no usable GPU here" >&2
+  exit 3
+fi
+echo "gpu_check: all tests rc=$all, gpu tests rc=$gpu"
+[ "$all" -eq 0 ] && [ "$gpu" -eq 0 ]
