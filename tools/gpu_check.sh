@@ -19,7 +19,7 @@ mkdir -p "$out"
 } | tee "$out/gpu_env.txt"
 
 cmake --preset core-gpu -DHDRF_SHARED_DATA_DIR=/nonexistent 2>&1 | tail -n 3
-cmake --build --preset core-gpu -j "$(nproc)" 2>&1 | tail -n 3
+cmake --build --preset core-gpu -j "$(nproc)" 2>&1 | tee "$out/build.txt" | grep -iE "error|warning" || true
 set +e
 ctest --preset core-gpu -j 4 2>&1 | tee "$out/ctest_all.txt" | tail -n 15
 all=${PIPESTATUS[0]}
