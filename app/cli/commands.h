@@ -13,5 +13,8 @@ struct Command {
 
 Command AddInfoCommand(CLI::App& app);
 Command AddRadianceCommand(CLI::App& app);
+Command AddSimulateCommand(CLI::App& app);
+Command AddContactSheetCommand(CLI::App& app);
+Command AddBenchCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

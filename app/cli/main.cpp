@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   const std::vector<hdrf::cli::Command> commands = {
       hdrf::cli::AddInfoCommand(app),
       hdrf::cli::AddRadianceCommand(app),
+      hdrf::cli::AddSimulateCommand(app),
+      hdrf::cli::AddContactSheetCommand(app),
+      hdrf::cli::AddBenchCommand(app),
   };
   try {
     app.parse(argc, argv);

@@ -3,16 +3,9 @@
 #pragma once
 
 #include "common/host_device.h"
+#include "common/vec.h"
 
 namespace hdrf {
-
-struct Float2 { float x, y; };
-struct Float3 { float x, y, z; };
-
-HDRF_HD Float3 operator+(Float3 a, Float3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-HDRF_HD Float3 operator-(Float3 a, Float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-HDRF_HD Float3 operator*(Float3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-HDRF_HD float Dot(Float3 a, Float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 struct PinholeCamera {
   int width = 0;

@@ -36,3 +36,16 @@ Pose Orthonormalized(const Pose& T);
 
 }  // namespace se3
 }  // namespace hdrf
+
+#include "common/vec.h"
+
+namespace hdrf {
+// Float copy of a pose for per-element code.
+inline RigidTransform ToRigidTransform(const Pose& T) {
+  RigidTransform out;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.r[3 * i + j] = float(T.linear()(i, j));
+  out.t = {float(T.translation().x()), float(T.translation().y()), float(T.translation().z())};
+  return out;
+}
+}  // namespace hdrf

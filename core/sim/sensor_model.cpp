@@ -1,0 +1,24 @@
+#include "sim/sensor_model.h"
+
+#include <algorithm>
+
+namespace hdrf::sim {
+
+ForwardResponse::ForwardResponse(const radiometry::InverseResponse& inverse) {
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 255; ++i)
+      thresholds_[c][i] = 0.5f * (inverse.table[c][i] + inverse.table[c][i + 1]);
+}
+
+std::uint8_t ForwardResponse::Level(int c, float R) const {
+  const auto& t = thresholds_[c];
+  return std::uint8_t(std::upper_bound(t.begin(), t.end(), R) - t.begin());
+}
+
+float AxialSigma(float z_m) {
+  // Nguyen, Izadi & Lovell (3DIMPVT 2012): sigma_z = 0.0012 + 0.0019 (z - 0.4)^2.
+  const float d = z_m - 0.4f;
+  return 0.0012f + 0.0019f * d * d;
+}
+
+}  // namespace hdrf::sim
