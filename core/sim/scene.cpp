@@ -127,6 +127,33 @@ bool IntersectCylinder(const Primitive& c, Float3 o, Float3 d, float t_min, floa
   return hit;
 }
 
+// Entry distance of a ray (origin o, inverse direction inv) into a box, if the ray enters it
+// within (t_min, t_max). Branch-free slab test.
+inline bool SlabEnter(Float3 lo, Float3 hi, Float3 o, Float3 inv, float t_min, float t_max,
+                      float* t) {
+  const float x1 = (lo.x - o.x) * inv.x, x2 = (hi.x - o.x) * inv.x;
+  const float y1 = (lo.y - o.y) * inv.y, y2 = (hi.y - o.y) * inv.y;
+  const float z1 = (lo.z - o.z) * inv.z, z2 = (hi.z - o.z) * inv.z;
+  const float tn = std::max(std::max(std::min(x1, x2), std::min(y1, y2)), std::min(z1, z2));
+  const float tf = std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::max(z1, z2));
+  *t = tn;
+  return tn <= tf && tn > t_min && tn < t_max;
+}
+
+// Outward normal of the box face a point on its surface lies on.
+Float3 BoxNormal(Float3 lo, Float3 hi, Float3 p) {
+  const float d[6] = {std::abs(p.x - lo.x), std::abs(p.x - hi.x), std::abs(p.y - lo.y),
+                      std::abs(p.y - hi.y), std::abs(p.z - lo.z), std::abs(p.z - hi.z)};
+  const int k = int(std::min_element(d, d + 6) - d);
+  static const Float3 kN[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  return kN[k];
+}
+
+inline Float3 Inverse(Float3 d) {
+  auto inv = [](float v) { return std::abs(v) > 1e-20f ? 1.0f / v : std::copysign(1e20f, v); };
+  return {inv(d.x), inv(d.y), inv(d.z)};
+}
+
 bool IntersectPrimitive(const Primitive& p, Float3 o, Float3 d, float t_min, float t_max,
                         float* t, Float3* n) {
   switch (p.shape) {
@@ -302,12 +329,24 @@ Scene Scene::Build(const std::string& name, std::uint32_t seed) {
     light({0.35f, 1.8f, 1.3f}, {2.5f, 2.6f, 2.9f});
     light({2.40f, 2.95f, 1.15f}, {0.35f, 0.30f, 0.22f});  // desk lamp, close to the desk
     s.ambient_ = {0.02f, 0.02f, 0.022f};
-    s.bright_targets_ = {{0.f, 1.5f, 1.5f}, {2.2f, 2.7f, 0.8f}, {1.8f, 3.0f, 1.0f}};
+    s.bright_targets_ = {{0.f, 2.6f, 1.2f}, {2.2f, 2.7f, 0.8f}, {1.8f, 3.0f, 1.0f}};
     s.dark_targets_ = {{1.8f, 3.0f, 0.2f}, {3.9f, 3.3f, 0.4f}, {3.5f, 0.2f, 0.3f}};
   } else {
     throw SettingError("--scene", "unknown scene '" + name + "'; choose one of: room, desk");
   }
+  s.Index();
   return s;
+}
+
+void Scene::Index() {
+  boxes_.clear();
+  curved_.clear();
+  for (std::size_t i = 0; i < primitives_.size(); ++i) {
+    if (primitives_[i].shape == Shape::kBox)
+      boxes_.push_back({primitives_[i].lo, primitives_[i].hi, int(i)});
+    else
+      curved_.push_back(int(i));
+  }
 }
 
 Hit Scene::Intersect(Float3 o, Float3 d, float t_min) const {
@@ -332,14 +371,29 @@ Hit Scene::Intersect(Float3 o, Float3 d, float t_min) const {
   h.normal = kInward[wall];
   h.material = wall_material_[wall];
   h.primitive = -1;
-  for (std::size_t i = 0; i < primitives_.size(); ++i) {
+  const Float3 inv = Inverse(d);
+  int best_box = -1;
+  for (std::size_t i = 0; i < boxes_.size(); ++i) {
+    float t;
+    if (SlabEnter(boxes_[i].lo, boxes_[i].hi, o, inv, t_min, h.t, &t)) {
+      h.t = t;
+      best_box = int(i);
+    }
+  }
+  if (best_box >= 0) {
+    const BoxRef& b = boxes_[std::size_t(best_box)];
+    h.normal = BoxNormal(b.lo, b.hi, o + d * h.t);
+    h.material = primitives_[std::size_t(b.index)].material;
+    h.primitive = b.index;
+  }
+  for (int i : curved_) {
     float t;
     Float3 n;
-    if (IntersectPrimitive(primitives_[i], o, d, t_min, h.t, &t, &n)) {
+    if (IntersectPrimitive(primitives_[std::size_t(i)], o, d, t_min, h.t, &t, &n)) {
       h.t = t;
       h.normal = n;
-      h.material = primitives_[i].material;
-      h.primitive = int(i);
+      h.material = primitives_[std::size_t(i)].material;
+      h.primitive = i;
     }
   }
   h.point = o + d * h.t;
@@ -350,11 +404,14 @@ bool Scene::Occluded(Float3 p, Float3 light) const {
   const Float3 v = light - p;
   const float dist = Length(v);
   const Float3 d = v / dist;
-  for (const Primitive& prim : primitives_) {
-    float t;
-    Float3 n;
-    if (IntersectPrimitive(prim, p, d, 1e-3f, dist - 1e-3f, &t, &n)) return true;
-  }
+  const Float3 inv = Inverse(d);
+  float t;
+  for (const BoxRef& b : boxes_)
+    if (SlabEnter(b.lo, b.hi, p, inv, 1e-3f, dist - 1e-3f, &t)) return true;
+  Float3 n;
+  for (int i : curved_)
+    if (IntersectPrimitive(primitives_[std::size_t(i)], p, d, 1e-3f, dist - 1e-3f, &t, &n))
+      return true;
   return false;
 }
 

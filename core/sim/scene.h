@@ -95,6 +95,15 @@ class Scene {
   int wall_material_[6] = {0, 0, 0, 0, 0, 0};  // -x, +x, -y, +y, floor, ceiling
   std::vector<Material> materials_;
   std::vector<Primitive> primitives_;
+  // Acceleration: boxes apart (a branch-free slab test with a per-ray inverse direction),
+  // and the curved shapes apart.
+  struct BoxRef {
+    Float3 lo, hi;
+    int index;
+  };
+  std::vector<BoxRef> boxes_;
+  std::vector<int> curved_;
+  void Index();
   std::vector<PointLight> lights_;
   Float3 ambient_{};  // irradiance everywhere (indirect light stand-in)
   std::vector<Float3> bright_targets_, dark_targets_;

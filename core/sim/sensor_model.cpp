@@ -1,18 +1,24 @@
 #include "sim/sensor_model.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace hdrf::sim {
 
 ForwardResponse::ForwardResponse(const radiometry::InverseResponse& inverse) {
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; c < 3; ++c) {
     for (int i = 0; i < 255; ++i)
       thresholds_[c][i] = 0.5f * (inverse.table[c][i] + inverse.table[c][i + 1]);
+    thresholds_[c][255] = std::numeric_limits<float>::infinity();
+  }
 }
 
 std::uint8_t ForwardResponse::Level(int c, float R) const {
-  const auto& t = thresholds_[c];
-  return std::uint8_t(std::upper_bound(t.begin(), t.end(), R) - t.begin());
+  // Number of thresholds <= R (as upper_bound), by an 8-step branch-free search.
+  const float* t = thresholds_[c].data();
+  int lo = 0;
+  for (int step = 128; step > 0; step >>= 1) lo += (t[lo + step - 1] <= R) ? step : 0;
+  return std::uint8_t(lo);
 }
 
 float AxialSigma(float z_m) {

@@ -21,7 +21,8 @@ class ForwardResponse {
   std::uint8_t Level(int c, float R) const;
 
  private:
-  std::array<std::array<float, 255>, 3> thresholds_{};
+  // 255 midpoints padded with +inf to 256 for a branch-free binary search.
+  std::array<std::array<float, 256>, 3> thresholds_{};
 };
 
 struct DepthNoiseOptions {

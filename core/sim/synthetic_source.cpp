@@ -84,7 +84,7 @@ SimFrame SyntheticSource::Next() {
   f.radiance = RadianceImage(w, h);
   f.depth_true = DepthImage(w, h);
   Image<float> grazing(w, h);   // |n . view ray|
-  Image<std::uint8_t> emitter(w, h);
+  Image<std::uint8_t> emitter(w, h);  // surfaces the depth camera cannot see
 
   // 1. Ray casting: true radiance, depth, surface orientation.
 #pragma omp parallel for schedule(dynamic, 4)
@@ -96,7 +96,8 @@ SimFrame SyntheticSource::Next() {
       f.radiance(x, y) = scene_.Shade(hit);
       f.depth_true(x, y) = hit.t * dc.z;
       grazing(x, y) = std::abs(Dot(hit.normal, dw));
-      emitter(x, y) = scene_.IsEmissive(hit.material) ? 1 : 0;
+      // Emitters bright enough to blind the IR camera (daylight) give no depth; a monitor does.
+      emitter(x, y) = scene_.IsEmissive(hit.material) && MaxComponent(f.radiance(x, y)) > 20.f;
     }
   }
 

@@ -16,12 +16,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
+struct RunResult {
   int status;
   std::string output;
 };
 
-Result RunCli(const std::string& args) {
+RunResult RunCli(const std::string& args) {
   const std::string cmd = std::string(HDRF_CLI) + " " + args + " 2>&1";
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   std::string out;
@@ -54,7 +54,7 @@ TEST(Cli, InfoReportsASequenceWrittenByAnotherTool) {
   test::WriteText(seq / "sensor.json",
                   R"({"camera": {"width": 16, "height": 12, "fx": 10, "fy": 10, "cx": 7.5,
                       "cy": 5.5}, "depth": {"scale": 5000}})");
-  const Result r = RunCli("info " + seq.string() + " --depth-samples 31");
+  const RunResult r = RunCli("info " + seq.string() + " --depth-samples 31");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("frames        31"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1.000 s (30.00 Hz)"), std::string::npos) << r.output;
@@ -68,7 +68,7 @@ TEST(Cli, InfoReportsASequenceWrittenByAnotherTool) {
 
 TEST(Cli, InfoOnBadInputFailsWithOneLineNamingTheFile) {
   test::TempDir dir;
-  Result r = RunCli("info " + (dir / "missing").string());
+  RunResult r = RunCli("info " + (dir / "missing").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("missing"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
@@ -82,7 +82,7 @@ TEST(Cli, InfoOnBadInputFailsWithOneLineNamingTheFile) {
 TEST(Cli, RadianceRefusesMissingCalibrationAndHonoursSrgbFallback) {
   test::TempDir dir;
   cv::imwrite((dir / "c.png").string(), cv::Mat(4, 4, CV_8UC3, cv::Scalar(0, 0, 255)));
-  Result r = RunCli("radiance " + (dir / "c.png").string() + " --out " + (dir / "r.exr").string());
+  RunResult r = RunCli("radiance " + (dir / "c.png").string() + " --out " + (dir / "r.exr").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--response srgb"), std::string::npos) << r.output;
   r = RunCli("radiance " + (dir / "c.png").string() + " --response srgb --exposure 2 --out " +
@@ -97,6 +97,55 @@ TEST(Cli, UnknownSubcommandAndMissingArgumentsFail) {
   EXPECT_NE(RunCli("frobnicate").status, 0);
   EXPECT_NE(RunCli("info").status, 0);
   EXPECT_EQ(RunCli("--version").status, 0);
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+TEST(Cli, SimulateWritesASequenceThatInfoAndTheReaderAccept) {
+  test::TempDir dir;
+  const std::string out = (dir / "sim").string();
+  RunResult r = RunCli("simulate --out " + out + " --frames 12 --size 64x48 --ae flicker --seed 3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const io::SequenceReader seq(out);
+  ASSERT_EQ(seq.size(), 12u);
+  EXPECT_TRUE(seq.has_exposure() && seq.has_groundtruth() && seq.has_hdr());
+  ASSERT_TRUE(seq.sensor().response && seq.sensor().noise);
+  EXPECT_EQ(seq.sensor().camera.width, 64);
+  EXPECT_NEAR(seq.sensor().noise->sigma_s[1], 0.032663, 1e-6);  // the built-in Xtion profile
+  const io::Frame f = seq.ReadFrame(5);
+  EXPECT_EQ(f.color.width(), 64);
+  EXPECT_GT(seq.ReadHdr(5)[100].y, 0.f);
+  r = RunCli("info " + out);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("hdr radiance  yes"), std::string::npos) << r.output;
+  r = RunCli("contact-sheet " + out + " --out " + (dir / "sheet.png").string() + " --rows 3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(cv::imread((dir / "sheet.png").string()).cols, 3 * 64 + 8);
+}
+
+TEST(Cli, SimulateSweepAndBadSettings) {
+  test::TempDir dir;
+  RunResult r = RunCli("simulate --out " + (dir / "sweep").string() +
+                       " --sweep --sweep-exposures 1,4,16 --sweep-repeats 3 --size 32x24");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const io::SequenceReader seq((dir / "sweep").string());
+  ASSERT_EQ(seq.size(), 9u);
+  EXPECT_DOUBLE_EQ(*seq.frames()[3].exposure_ms, 4.0);
+  r = RunCli("simulate --out " + (dir / "x").string() + " --size 10by10");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
+  r = RunCli("simulate --out " + (dir / "x").string() + " --ae list --exposures 3,abc");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("'abc'"), std::string::npos) << r.output;
+  // An existing, non-empty output folder is refused and left alone.
+  r = RunCli("simulate --out " + (dir / "sweep").string() + " --frames 2 --size 32x24");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("not empty"), std::string::npos) << r.output;
+  EXPECT_EQ(io::SequenceReader((dir / "sweep").string()).size(), 9u);
 }
 
 }  // namespace

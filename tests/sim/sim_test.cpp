@@ -390,3 +390,26 @@ TEST(SimProfile, BuiltinXtionResponseIsRealAndNotAGamma) {
 
 }  // namespace
 }  // namespace hdrf::sim
+
+namespace hdrf::sim {
+namespace {
+
+TEST(SimForwardResponse, InvertsTheInverseTableAndQuantisesAtMidpoints) {
+  const radiometry::InverseResponse inv = *BuiltinXtionProfile().response;
+  const ForwardResponse f(inv);
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < 256; ++i) {
+      ASSERT_EQ(f.Level(c, inv.table[c][i]), i) << "channel " << c << " level " << i;
+      if (i < 255) {
+        const float mid = 0.5f * (inv.table[c][i] + inv.table[c][i + 1]);
+        EXPECT_EQ(f.Level(c, std::nextafter(mid, 0.f)), i);
+        EXPECT_EQ(f.Level(c, mid), i + 1);
+      }
+    }
+    EXPECT_EQ(f.Level(c, -1.f), 0);
+    EXPECT_EQ(f.Level(c, 1e9f), 255);
+  }
+}
+
+}  // namespace
+}  // namespace hdrf::sim
