@@ -1,0 +1,519 @@
+#include "radiometry/calibration.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace hdrf::radiometry {
+
+namespace {
+
+std::uint8_t Level(const Rgb8& p, int c) { return c == 0 ? p.r : (c == 1 ? p.g : p.b); }
+bool Clipped(int z, ClipLevels clip) { return z < clip.lo || z > clip.hi; }
+
+// Debevec's hat weight on [0, 255], zero where clipped.
+double Hat(int z, ClipLevels clip) {
+  if (Clipped(z, clip)) return 0;
+  return z <= 127 ? double(z - clip.lo + 1) : double(clip.hi - z + 1);
+}
+
+struct Groups {
+  std::vector<double> exposure;           // distinct, ascending
+  std::vector<std::vector<int>> images;   // image indices per exposure
+};
+
+Groups GroupByExposure(const Sweep& s) {
+  std::map<double, std::vector<int>> m;
+  for (std::size_t i = 0; i < s.images.size(); ++i) m[s.exposure_ms[i]].push_back(int(i));
+  Groups g;
+  for (auto& [e, v] : m) {
+    g.exposure.push_back(e);
+    g.images.push_back(v);
+  }
+  return g;
+}
+
+// Pixel locations for fitting, stratified by the level of a middle exposure so that dark
+// and bright parts of the curve both get samples; only pixels unclipped in >= 2 exposures.
+std::vector<std::size_t> SamplePixels(const Sweep& s, const Groups& g, int c, int count,
+                                      ClipLevels clip) {
+  const std::size_t n = s.images[0].size();
+  const ColorImage& mid = s.images[std::size_t(g.images[g.images.size() / 2][0])];
+  std::vector<std::vector<std::size_t>> buckets(32);
+  for (std::size_t p = 0; p < n; ++p) {
+    int usable = 0;
+    for (const auto& grp : g.images) usable += !Clipped(Level(s.images[std::size_t(grp[0])][p], c), clip);
+    if (usable >= 2) buckets[Level(mid[p], c) / 8].push_back(p);
+  }
+  std::mt19937 rng(1234u + unsigned(c));
+  std::vector<std::size_t> out;
+  std::size_t non_empty = 0;
+  for (auto& b : buckets) non_empty += !b.empty();
+  if (!non_empty) return out;
+  const std::size_t per = std::max<std::size_t>(1, std::size_t(count) / non_empty);
+  for (auto& b : buckets) {
+    std::shuffle(b.begin(), b.end(), rng);
+    for (std::size_t k = 0; k < std::min(per, b.size()); ++k) out.push_back(b[k]);
+  }
+  return out;
+}
+
+void NormaliseAt128(InverseResponse& r) {
+  for (int c = 0; c < 3; ++c) {
+    const float s = r.table[c][128];
+    if (s > 0)
+      for (float& v : r.table[c]) v /= s;
+  }
+}
+
+ResponseFit Finish(ResponseFit fit, const Sweep& s, const Groups& g, ClipLevels clip) {
+  EnforceMonotonic(fit.inverse);
+  // Residual: ln(f^-1(I)/t) against the per-pixel mean of the same over the sweep.
+  for (int c = 0; c < 3; ++c) {
+    const auto px = SamplePixels(s, g, c, 2000, clip);
+    double sum2 = 0;
+    long n = 0;
+    for (std::size_t p : px) {
+      std::vector<double> v;
+      for (std::size_t i = 0; i < s.images.size(); ++i) {
+        const int z = Level(s.images[i][p], c);
+        if (!Clipped(z, clip) && fit.inverse.table[c][z] > 0)
+          v.push_back(std::log(fit.inverse.table[c][z] / s.exposure_ms[i]));
+      }
+      if (v.size() < 2) continue;
+      const double m = std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+      for (double x : v) sum2 += (x - m) * (x - m);
+      n += long(v.size());
+    }
+    fit.rms_log_residual[c] = n ? std::sqrt(sum2 / double(n)) : NAN;
+    fit.samples_used[c] = int(px.size());
+  }
+  return fit;
+}
+
+}  // namespace
+
+void CheckSweep(const Sweep& s) {
+  const Groups g = GroupByExposure(s);
+  if (s.images.empty()) throw Error(s.source + ": the sweep has no frames");
+  if (s.images.size() != s.exposure_ms.size())
+    throw Error(s.source + ": every frame needs an exposure (exposure.txt)");
+  for (double e : s.exposure_ms)
+    if (!(e > 0)) throw Error(s.source + ": exposures must be positive");
+  if (g.exposure.size() < 2) {
+    std::ostringstream os;
+    os << s.source << ": the sweep has a single exposure (" << g.exposure[0]
+       << " ms); calibration needs at least 2 distinct exposures, ideally 5 or more an "
+          "f-stop apart";
+    throw Error(os.str());
+  }
+  for (const auto& im : s.images)
+    if (im.width() != s.images[0].width() || im.height() != s.images[0].height())
+      throw Error(s.source + ": frames of different sizes");
+  const ClipLevels clip;
+  // Usable pixels: unclipped in at least two exposures (any channel).
+  std::size_t usable = 0;
+  const std::size_t n = s.images[0].size();
+  for (std::size_t p = 0; p < n; p += 7) {
+    int count = 0;
+    for (const auto& grp : g.images) {
+      const Rgb8 v = s.images[std::size_t(grp[0])][p];
+      count += !Clipped(v.g, clip);
+    }
+    usable += count >= 2;
+  }
+  if (usable * 7 < 200)
+    throw Error(s.source + ": almost every pixel is clipped (saturated or black) in all but one "
+                           "exposure; use a scene with mid-tones and a wider exposure range");
+  // A camera or scene that moved: brightness order of pixel pairs must be preserved between
+  // exposures (the response is monotonic), up to noise.
+  std::mt19937 rng(99);
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  long considered = 0, violations = 0;
+  for (std::size_t k = 0; k + 1 < g.images.size(); ++k) {
+    const ColorImage& a = s.images[std::size_t(g.images[k][0])];
+    const ColorImage& b = s.images[std::size_t(g.images[k + 1][0])];
+    for (int t = 0; t < 20000; ++t) {
+      const std::size_t p = pick(rng), q = pick(rng);
+      for (int c = 0; c < 3; ++c) {
+        const int ap = Level(a[p], c), aq = Level(a[q], c), bp = Level(b[p], c), bq = Level(b[q], c);
+        if (Clipped(ap, clip) || Clipped(aq, clip) || Clipped(bp, clip) || Clipped(bq, clip)) continue;
+        if (ap > aq + 8) {
+          ++considered;
+          violations += bp < bq - 8;
+        } else if (aq > ap + 8) {
+          ++considered;
+          violations += bq < bp - 8;
+        }
+      }
+    }
+  }
+  if (considered > 200 && double(violations) / double(considered) > 0.05) {
+    std::ostringstream os;
+    os << s.source << ": the camera or the scene moved during the sweep ("
+       << int(100.0 * double(violations) / double(considered))
+       << " % of pixel pairs change brightness order between exposures); a sweep needs a "
+          "static camera and a static scene";
+    throw Error(os.str());
+  }
+}
+
+void EnforceMonotonic(InverseResponse& r) {
+  for (int c = 0; c < 3; ++c) {
+    // Pool adjacent violators: blocks of (mean, weight).
+    std::vector<double> mean;
+    std::vector<int> len;
+    for (int i = 0; i < kLevels; ++i) {
+      mean.push_back(r.table[c][i]);
+      len.push_back(1);
+      while (mean.size() > 1 && mean[mean.size() - 2] > mean.back()) {
+        const double m = (mean[mean.size() - 2] * len[len.size() - 2] + mean.back() * len.back()) /
+                         double(len[len.size() - 2] + len.back());
+        len[len.size() - 2] += len.back();
+        mean[mean.size() - 2] = m;
+        mean.pop_back();
+        len.pop_back();
+      }
+    }
+    int i = 0;
+    for (std::size_t b = 0; b < mean.size(); ++b)
+      for (int k = 0; k < len[b]; ++k) r.table[c][i++] = float(std::max(0.0, mean[b]));
+  }
+  NormaliseAt128(r);
+}
+
+ResponseFit FitDebevec(const Sweep& s, const DebevecOptions& o) {
+  CheckSweep(s);
+  const Groups g = GroupByExposure(s);
+  ResponseFit fit;
+  fit.method = "debevec";
+  for (int c = 0; c < 3; ++c) {
+    const auto px = SamplePixels(s, g, c, o.samples, o.clip);
+    const int N = int(px.size());
+    if (N < 10) throw Error(s.source + ": too few usable pixels in channel " + std::to_string(c));
+    // Normal equations of  w (g(z) - lnE_i) = w ln t  and  lambda w_s (g(z-1) - 2 g(z) + g(z+1)) = 0,
+    // with the diagonal lnE block eliminated (Schur complement): a 256 x 256 system.
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(256, 256);
+    Eigen::VectorXd rg = Eigen::VectorXd::Zero(256);
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(256, N);
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(N), rE = Eigen::VectorXd::Zero(N);
+    for (int i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < s.images.size(); ++j) {
+        const int z = Level(s.images[j][px[std::size_t(i)]], c);
+        const double w = Hat(z, o.clip);
+        if (w <= 0) continue;
+        const double w2 = w * w, lt = std::log(s.exposure_ms[j]);
+        G(z, z) += w2;
+        B(z, i) -= w2;
+        D(i) += w2;
+        rg(z) += w2 * lt;
+        rE(i) -= w2 * lt;
+      }
+    for (int z = 1; z < 255; ++z) {
+      const double w = o.lambda * (Hat(z, {0, 255}) + 1.0);
+      const double w2 = w * w;
+      const int idx[3] = {z - 1, z, z + 1};
+      const double coef[3] = {1, -2, 1};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) G(idx[a], idx[b]) += w2 * coef[a] * coef[b];
+    }
+    G(128, 128) += 1e8;  // g(128) = 0: f^-1(128) = 1
+    for (int i = 0; i < N; ++i) {
+      if (D(i) <= 0) {
+        D(i) = 1;  // a sample with no usable observation: lnE free, decoupled
+        continue;
+      }
+    }
+    const Eigen::MatrixXd BDinv = B * D.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd S = G - BDinv * B.transpose();
+    const Eigen::VectorXd rhs = rg - BDinv * rE;
+    const Eigen::VectorXd gz = S.ldlt().solve(rhs);
+    for (int z = 0; z < 256; ++z) fit.inverse.table[c][z] = float(std::exp(gz(z)));
+  }
+  return Finish(fit, s, g, o.clip);
+}
+
+ResponseFit FitRobertson(const Sweep& s, const RobertsonOptions& o) {
+  CheckSweep(s);
+  const Groups g = GroupByExposure(s);
+  ResponseFit fit;
+  fit.method = "robertson";
+  auto weight = [&](int z) {
+    if (Clipped(z, o.clip)) return 0.0;
+    const double d = (z - 127.5) / 127.5;
+    return std::exp(-4.0 * d * d);
+  };
+  for (int c = 0; c < 3; ++c) {
+    const auto px = SamplePixels(s, g, c, o.samples, o.clip);
+    const std::size_t N = px.size(), J = s.images.size();
+    if (N < 10) throw Error(s.source + ": too few usable pixels in channel " + std::to_string(c));
+    std::vector<std::uint8_t> Z(N * J);
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < J; ++j) Z[i * J + j] = Level(s.images[j][px[i]], c);
+    std::array<double, 256> gz{};
+    for (int z = 0; z < 256; ++z) gz[std::size_t(z)] = std::max(1e-3, z / 128.0);
+    std::vector<double> E(N);
+    for (int it = 0; it < o.iterations; ++it) {
+      for (std::size_t i = 0; i < N; ++i) {
+        double num = 0, den = 0;
+        for (std::size_t j = 0; j < J; ++j) {
+          const int z = Z[i * J + j];
+          const double w = weight(z), t = s.exposure_ms[j];
+          num += w * gz[std::size_t(z)] * t;
+          den += w * t * t;
+        }
+        E[i] = den > 0 ? num / den : 0;
+      }
+      std::array<double, 256> sum{}, cnt{};
+      for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t j = 0; j < J; ++j) {
+          const int z = Z[i * J + j];
+          if (Clipped(z, o.clip) || E[i] <= 0) continue;
+          sum[std::size_t(z)] += E[i] * s.exposure_ms[j];
+          cnt[std::size_t(z)] += 1;
+        }
+      for (int z = 0; z < 256; ++z)
+        if (cnt[std::size_t(z)] > 0) gz[std::size_t(z)] = sum[std::size_t(z)] / cnt[std::size_t(z)];
+      const double s128 = gz[128];
+      if (s128 > 0)
+        for (double& v : gz) v /= s128;
+    }
+    // Levels never observed (clipped ends): extend with the slope of log g near the ends.
+    int first = 0, last = 255;
+    while (first < 255 && Clipped(first, o.clip)) ++first;
+    while (last > 0 && Clipped(last, o.clip)) --last;
+    const double slope_lo = std::log(gz[std::size_t(first + 4)] / gz[std::size_t(first)]) / 4.0;
+    const double slope_hi = std::log(gz[std::size_t(last)] / gz[std::size_t(last - 4)]) / 4.0;
+    for (int z = first - 1; z >= 0; --z) gz[std::size_t(z)] = gz[std::size_t(z + 1)] * std::exp(-slope_lo);
+    for (int z = last + 1; z < 256; ++z) gz[std::size_t(z)] = gz[std::size_t(z - 1)] * std::exp(slope_hi);
+    for (int z = 0; z < 256; ++z) fit.inverse.table[c][z] = float(gz[std::size_t(z)]);
+  }
+  return Finish(fit, s, g, o.clip);
+}
+
+EmorBasis EmorBasis::Load(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
+  EmorBasis b;
+  std::vector<std::vector<double>> blocks;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find('=') != std::string::npos) {
+      blocks.emplace_back();
+      continue;
+    }
+    if (blocks.empty()) throw InputError(file, line_no, "data before the first 'name =' header");
+    std::istringstream ss(line);
+    double v;
+    while (ss >> v) blocks.back().push_back(v);
+  }
+  if (blocks.size() < 3) throw InputError(file, "expected B, g0 and hinv blocks, found " + std::to_string(blocks.size()));
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    if (blocks[k].size() != 1024)
+      throw InputError(file, "block " + std::to_string(k + 1) + " has " +
+                                 std::to_string(blocks[k].size()) + " values, expected 1024");
+  b.g0 = blocks[1];
+  b.h.assign(blocks.begin() + 2, blocks.end());
+  return b;
+}
+
+ResponseFit FitEmor(const Sweep& s, const EmorBasis& basis, const EmorOptions& o) {
+  CheckSweep(s);
+  if (o.components < 1 || o.components > int(basis.h.size()))
+    throw SettingError("--emor-components", "must be between 1 and " + std::to_string(basis.h.size()));
+  const Groups g = GroupByExposure(s);
+  const int K = o.components;
+  // Basis values at the 256 levels (B = z / 255 on the 1024-sample grid).
+  auto at = [](const std::vector<double>& v, int z) {
+    const double x = z * 1023.0 / 255.0;
+    const int i = std::min(1022, int(x));
+    return v[std::size_t(i)] + (v[std::size_t(i + 1)] - v[std::size_t(i)]) * (x - i);
+  };
+  std::vector<double> g0(256);
+  std::vector<std::vector<double>> h(std::size_t(K), std::vector<double>(256));
+  for (int z = 0; z < 256; ++z) {
+    g0[std::size_t(z)] = at(basis.g0, z);
+    for (int k = 0; k < K; ++k) h[std::size_t(k)][std::size_t(z)] = at(basis.h[std::size_t(k)], z);
+  }
+  ResponseFit fit;
+  fit.method = "emor";
+  for (int c = 0; c < 3; ++c) {
+    const auto px = SamplePixels(s, g, c, o.samples, o.clip);
+    // For consecutive exposures t_a < t_b of one pixel: g(z_a) / t_a = g(z_b) / t_b, linear in
+    // the coefficients; each equation scaled by 1 / E (relative error) and the hat weight.
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(K, K);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(K);
+    for (std::size_t p : px)
+      for (std::size_t k = 0; k + 1 < g.images.size(); ++k)
+        for (int ia : g.images[k])
+          for (int ib : g.images[k + 1]) {
+            const int za = Level(s.images[std::size_t(ia)][p], c), zb = Level(s.images[std::size_t(ib)][p], c);
+            const double w = std::min(Hat(za, o.clip), Hat(zb, o.clip));
+            if (w <= 0) continue;
+            const double ta = g.exposure[k], tb = g.exposure[k + 1];
+            const double e = 0.5 * (g0[std::size_t(za)] / ta + g0[std::size_t(zb)] / tb);
+            if (e <= 0) continue;
+            const double scale = w / e;
+            Eigen::VectorXd row(K);
+            for (int n = 0; n < K; ++n)
+              row(n) = scale * (h[std::size_t(n)][std::size_t(za)] / ta - h[std::size_t(n)][std::size_t(zb)] / tb);
+            const double rhs = -scale * (g0[std::size_t(za)] / ta - g0[std::size_t(zb)] / tb);
+            A += row * row.transpose();
+            r += row * rhs;
+          }
+    const Eigen::VectorXd coef = (A + 1e-9 * Eigen::MatrixXd::Identity(K, K)).ldlt().solve(r);
+    for (int z = 0; z < 256; ++z) {
+      double v = g0[std::size_t(z)];
+      for (int n = 0; n < K; ++n) v += coef(n) * h[std::size_t(n)][std::size_t(z)];
+      fit.inverse.table[c][z] = float(std::max(0.0, v));
+    }
+  }
+  return Finish(fit, s, g, o.clip);
+}
+
+NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
+  const Groups g = GroupByExposure(s);
+  bool repeats = false;
+  for (const auto& grp : g.images) repeats |= grp.size() >= 3;
+  if (!repeats)
+    throw Error(s.source + ": the noise level function needs at least 3 frames per exposure "
+                           "(repeated frames); this sweep has one or two");
+  NoiseFit out;
+  const std::size_t npx = s.images[0].size();
+  for (int c = 0; c < 3; ++c) {
+    constexpr int kBins = 48;
+    std::vector<double> bz(kBins, 0), br(kBins, 0), bv(kBins, 0), bn(kBins, 0);
+    const auto& t = inv.table[c];
+    for (const auto& grp : g.images) {
+      if (grp.size() < 3) continue;
+      const double n = double(grp.size());
+      for (std::size_t p = 0; p < npx; ++p) {
+        double sum = 0, sum2 = 0, zs = 0;
+        bool clipped = false;
+        for (int i : grp) {
+          const int z = Level(s.images[std::size_t(i)][p], c);
+          clipped |= Clipped(z, clip);
+          sum += t[std::size_t(z)];
+          sum2 += double(t[std::size_t(z)]) * t[std::size_t(z)];
+          zs += z;
+        }
+        if (clipped) continue;
+        const double m = sum / n;
+        const double var = std::max(0.0, (sum2 - n * m * m) / (n - 1));
+        const int k = std::clamp(int(std::lround(zs / n)), 1, 254);
+        const double step = 0.5 * (t[std::size_t(k + 1)] - t[std::size_t(k - 1)]);
+        if (step * step > 0.5 * var) continue;  // quantisation dominates: no information
+        if (m <= 0) continue;
+        const int b = std::clamp(int((std::log10(m / t[128]) + 2.5) / 4.0 * kBins), 0, kBins - 1);
+        bz[std::size_t(b)] += zs / n;
+        br[std::size_t(b)] += m;
+        bv[std::size_t(b)] += var - step * step / 12.0;
+        bn[std::size_t(b)] += 1;
+      }
+    }
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int b = 0; b < kBins; ++b) {
+      if (bn[std::size_t(b)] < 20) continue;
+      const double x = br[std::size_t(b)] / bn[std::size_t(b)], y = bv[std::size_t(b)] / bn[std::size_t(b)];
+      out.levels[std::size_t(c)].push_back({bz[std::size_t(b)] / bn[std::size_t(b)], x, y, int(bn[std::size_t(b)])});
+      if (y <= 0) continue;
+      const double w = bn[std::size_t(b)] / (y * y);
+      sw += w;
+      sx += w * x;
+      sy += w * y;
+      sxx += w * x * x;
+      sxy += w * x * y;
+    }
+    if (out.levels[std::size_t(c)].size() < 3)
+      throw Error(s.source + ": too few unclipped, repeated pixels to fit the noise of channel " +
+                  std::to_string(c));
+    double a = (sw * sxy - sx * sy) / (sw * sxx - sx * sx);
+    double b0 = (sy - a * sx) / sw;
+    if (b0 < 0) {  // constant term not supported by the data: fit through the origin
+      b0 = 0;
+      a = sxy / sxx;
+    }
+    out.noise.sigma_s[std::size_t(c)] = float(std::sqrt(std::max(0.0, a)));
+    out.noise.sigma_c[std::size_t(c)] = float(std::sqrt(b0));
+    double r2 = 0;
+    for (const auto& l : out.levels[std::size_t(c)]) {
+      const double pred = a * l.radiance + b0;
+      r2 += std::pow((l.variance - pred) / pred, 2);
+    }
+    out.rms_relative_residual[std::size_t(c)] = std::sqrt(r2 / double(out.levels[std::size_t(c)].size()));
+  }
+  return out;
+}
+
+RadianceImage MergeHdr(const Sweep& s, const InverseResponse& inv, const PcfTables& pcf,
+                       ClipLevels clip) {
+  const std::size_t n = s.images[0].size();
+  RadianceImage out(s.images[0].width(), s.images[0].height());
+  std::size_t shortest = 0, longest = 0;
+  for (std::size_t j = 0; j < s.images.size(); ++j) {
+    if (s.exposure_ms[j] < s.exposure_ms[shortest]) shortest = j;
+    if (s.exposure_ms[j] > s.exposure_ms[longest]) longest = j;
+  }
+#pragma omp parallel for schedule(static)
+  for (long pl = 0; pl < long(n); ++pl) {
+    const std::size_t p = std::size_t(pl);
+    float v[3];
+    for (int c = 0; c < 3; ++c) {
+      double num = 0, den = 0;
+      bool any_bright = false;
+      for (std::size_t j = 0; j < s.images.size(); ++j) {
+        const int z = Level(s.images[j][p], c);
+        if (Clipped(z, clip)) {
+          any_bright |= z > clip.hi;
+          continue;
+        }
+        const double w = pcf[2][c][z];
+        num += w * inv.table[c][z] / s.exposure_ms[j];
+        den += w;
+      }
+      if (den > 0) {
+        v[c] = float(num / den);
+      } else {
+        const std::size_t j = any_bright ? shortest : longest;
+        v[c] = float(inv.table[c][Level(s.images[j][p], c)] / s.exposure_ms[j]);
+      }
+    }
+    out[p] = {v[0], v[1], v[2]};
+  }
+  return out;
+}
+
+std::vector<ExposureConsistency> MergeConsistency(const Sweep& s, const InverseResponse& inv,
+                                                  const RadianceImage& merged, ClipLevels clip) {
+  const Groups g = GroupByExposure(s);
+  std::vector<ExposureConsistency> out;
+  for (std::size_t k = 0; k < g.exposure.size(); ++k) {
+    std::vector<float> d;
+    const ColorImage& im = s.images[std::size_t(g.images[k][0])];
+    for (std::size_t p = 0; p < im.size(); p += 3)
+      for (int c = 0; c < 3; ++c) {
+        const int z = Level(im[p], c);
+        const float L = c == 0 ? merged[p].x : (c == 1 ? merged[p].y : merged[p].z);
+        if (Clipped(z, clip) || !(L > 0)) continue;
+        d.push_back(std::abs(std::log2(float(inv.table[c][z] / g.exposure[k]) / L)));
+      }
+    double med = NAN;
+    if (!d.empty()) {
+      std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+      med = d[d.size() / 2];
+    }
+    out.push_back({g.exposure[k], med, long(d.size())});
+  }
+  return out;
+}
+
+}  // namespace hdrf::radiometry

@@ -1,0 +1,110 @@
+// Radiometric calibration from an exposure sweep (FORMATS.md): camera response (Debevec &
+// Malik; Robertson et al.; EMoR basis of Grossberg & Nayar), noise level function, HDR merge.
+//
+// Scale convention: a response is only defined up to one factor per channel. Every fit here
+// returns f^-1 scaled so that f^-1(128) = 1 in each channel (level 128 = one unit of R).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/image.h"
+#include "radiometry/pcf.h"
+#include "radiometry/response.h"
+
+namespace hdrf::radiometry {
+
+// A static scene seen at several exposures; several frames may share one exposure.
+struct Sweep {
+  std::vector<ColorImage> images;
+  std::vector<double> exposure_ms;  // one per image
+  std::string source = "sweep";     // named in error messages (the folder)
+};
+
+// Refuses sweeps that cannot be calibrated, with the reason: fewer than two distinct
+// exposures, images of different sizes, no pixel unclipped in two exposures, or a camera
+// or scene that moved between exposures. Throws hdrf::Error naming sweep.source.
+void CheckSweep(const Sweep& sweep);
+
+// Levels treated as clipped (no information): below `lo` or above `hi`.
+struct ClipLevels {
+  int lo = 3, hi = 252;
+};
+
+struct DebevecOptions {
+  int samples = 1000;     // pixel locations sampled (stratified by brightness)
+  double lambda = 50.0;   // smoothness weight on g'' (g = ln f^-1)
+  ClipLevels clip;
+};
+struct RobertsonOptions {
+  int samples = 20000;  // pixel locations used
+  int iterations = 60;
+  ClipLevels clip;
+};
+struct EmorOptions {
+  int components = 6;   // hinv_1..hinv_K of the basis (the paper: 3 to 5 are usual)
+  int samples = 3000;
+  ClipLevels clip;
+};
+
+// The EMoR inverse basis (invemor.txt of the CAVE distribution): g(B) = g0(B) + sum c_n h_n(B)
+// sampled at B = j / 1023.
+struct EmorBasis {
+  std::vector<double> g0;
+  std::vector<std::vector<double>> h;  // up to 25 components
+  static EmorBasis Load(const std::filesystem::path& invemor_txt);  // throws InputError
+};
+
+struct ResponseFit {
+  InverseResponse inverse;
+  // Root-mean-square of ln(f^-1(I) / exposure) - ln(E) over the samples used (in natural
+  // log units: 0.01 is about 1 %), per channel.
+  std::array<double, 3> rms_log_residual{};
+  std::array<int, 3> samples_used{};
+  std::string method;
+};
+
+ResponseFit FitDebevec(const Sweep& sweep, const DebevecOptions& options = {});
+ResponseFit FitRobertson(const Sweep& sweep, const RobertsonOptions& options = {});
+ResponseFit FitEmor(const Sweep& sweep, const EmorBasis& basis, const EmorOptions& options = {});
+
+// Makes each channel non-decreasing by least-squares isotonic regression (pool adjacent
+// violators), then rescales so that f^-1(128) = 1.
+void EnforceMonotonic(InverseResponse& inverse);
+
+// Noise level function: for every (exposure, pixel, channel) with repeated frames, the mean
+// and variance of f^-1(I); then a weighted fit of Var = R sigma_s^2 + sigma_c^2, with the
+// variance added by 8-bit quantisation removed and clipped samples left out.
+struct NoiseLevel {
+  double level;     // mean 8-bit level of the bin
+  double radiance;  // mean R of the bin
+  double variance;  // mean variance of R (quantisation removed)
+  int count;
+};
+struct NoiseFit {
+  NoiseModel noise;
+  std::array<std::vector<NoiseLevel>, 3> levels;  // per channel, by brightness
+  std::array<double, 3> rms_relative_residual{};  // of the fit against the bins
+};
+NoiseFit FitNoise(const Sweep& sweep, const InverseResponse& inverse, ClipLevels clip = {});
+
+// Weighted merge of a sweep into radiance L = f^-1(I) / exposure_ms, per channel, weighted
+// by the PCF p2 of each sample (clipped samples get no weight). Pixels clipped in every
+// exposure take the value of the exposure nearest to unclipped.
+RadianceImage MergeHdr(const Sweep& sweep, const InverseResponse& inverse, const PcfTables& pcf,
+                       ClipLevels clip = {});
+
+// Consistency of a calibration: for each distinct exposure, the median over unclipped
+// samples of |log2(f^-1(I)/exposure / L_merged)|, in stops.
+struct ExposureConsistency {
+  double exposure_ms;
+  double median_abs_stops;
+  long samples;
+};
+std::vector<ExposureConsistency> MergeConsistency(const Sweep& sweep,
+                                                  const InverseResponse& inverse,
+                                                  const RadianceImage& merged,
+                                                  ClipLevels clip = {});
+
+}  // namespace hdrf::radiometry
