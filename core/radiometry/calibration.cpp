@@ -18,10 +18,12 @@ namespace {
 std::uint8_t Level(const Rgb8& p, int c) { return c == 0 ? p.r : (c == 1 ? p.g : p.b); }
 bool Clipped(int z, ClipLevels clip) { return z < clip.lo || z > clip.hi; }
 
-// Debevec's hat weight on [0, 255], zero where clipped.
+// Debevec's hat weight, zero where clipped, with a floor of 20 % of its peak so that the
+// data (not the smoothness prior) shapes steep knees near saturation.
 double Hat(int z, ClipLevels clip) {
   if (Clipped(z, clip)) return 0;
-  return z <= 127 ? double(z - clip.lo + 1) : double(clip.hi - z + 1);
+  const double hat = z <= 127 ? double(z - clip.lo + 1) : double(clip.hi - z + 1);
+  return std::max(hat, 25.0);
 }
 
 struct Groups {
@@ -136,8 +138,9 @@ void CheckSweep(const Sweep& s) {
   // exposures (the response is monotonic), up to noise.
   std::mt19937 rng(99);
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
-  long considered = 0, violations = 0;
+  // Judged per pair of consecutive exposures, so one move in a long sweep is not diluted.
   for (std::size_t k = 0; k + 1 < g.images.size(); ++k) {
+    long considered = 0, violations = 0;
     const ColorImage& a = s.images[std::size_t(g.images[k][0])];
     const ColorImage& b = s.images[std::size_t(g.images[k + 1][0])];
     for (int t = 0; t < 20000; ++t) {
@@ -154,14 +157,15 @@ void CheckSweep(const Sweep& s) {
         }
       }
     }
-  }
-  if (considered > 200 && double(violations) / double(considered) > 0.05) {
-    std::ostringstream os;
-    os << s.source << ": the camera or the scene moved during the sweep ("
-       << int(100.0 * double(violations) / double(considered))
-       << " % of pixel pairs change brightness order between exposures); a sweep needs a "
-          "static camera and a static scene";
-    throw Error(os.str());
+    if (considered > 200 && double(violations) / double(considered) > 0.05) {
+      std::ostringstream os;
+      os << s.source << ": the camera or the scene moved during the sweep (between "
+         << g.exposure[k] << " and " << g.exposure[k + 1] << " ms, "
+         << int(100.0 * double(violations) / double(considered))
+         << " % of pixel pairs change brightness order); a sweep needs a static camera and a "
+            "static scene";
+      throw Error(os.str());
+    }
   }
 }
 
@@ -344,38 +348,86 @@ ResponseFit FitEmor(const Sweep& s, const EmorBasis& basis, const EmorOptions& o
     g0[std::size_t(z)] = at(basis.g0, z);
     for (int k = 0; k < K; ++k) h[std::size_t(k)][std::size_t(z)] = at(basis.h[std::size_t(k)], z);
   }
+  // Start from the Debevec curve projected onto the basis (normalised to g(255) = 1), then
+  // refine by Gauss-Newton on the same log-domain objective as Debevec's data term, with
+  // the per-sample log irradiances eliminated (Schur complement): K unknowns per channel.
+  DebevecOptions dopt;
+  dopt.clip = o.clip;
+  const ResponseFit start = FitDebevec(s, dopt);
   ResponseFit fit;
   fit.method = "emor";
   for (int c = 0; c < 3; ++c) {
-    const auto px = SamplePixels(s, g, c, o.samples, o.clip);
-    // For consecutive exposures t_a < t_b of one pixel: g(z_a) / t_a = g(z_b) / t_b, linear in
-    // the coefficients; each equation scaled by 1 / E (relative error) and the hat weight.
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(K, K);
-    Eigen::VectorXd r = Eigen::VectorXd::Zero(K);
-    for (std::size_t p : px)
-      for (std::size_t k = 0; k + 1 < g.images.size(); ++k)
-        for (int ia : g.images[k])
-          for (int ib : g.images[k + 1]) {
-            const int za = Level(s.images[std::size_t(ia)][p], c), zb = Level(s.images[std::size_t(ib)][p], c);
-            const double w = std::min(Hat(za, o.clip), Hat(zb, o.clip));
-            if (w <= 0) continue;
-            const double ta = g.exposure[k], tb = g.exposure[k + 1];
-            const double e = 0.5 * (g0[std::size_t(za)] / ta + g0[std::size_t(zb)] / tb);
-            if (e <= 0) continue;
-            const double scale = w / e;
-            Eigen::VectorXd row(K);
-            for (int n = 0; n < K; ++n)
-              row(n) = scale * (h[std::size_t(n)][std::size_t(za)] / ta - h[std::size_t(n)][std::size_t(zb)] / tb);
-            const double rhs = -scale * (g0[std::size_t(za)] / ta - g0[std::size_t(zb)] / tb);
-            A += row * row.transpose();
-            r += row * rhs;
-          }
-    const Eigen::VectorXd coef = (A + 1e-9 * Eigen::MatrixXd::Identity(K, K)).ldlt().solve(r);
-    for (int z = 0; z < 256; ++z) {
+    const auto& d = start.inverse.table[c];
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(K, K);
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(K);
+    for (int z = o.clip.lo; z <= o.clip.hi; ++z) {
+      Eigen::VectorXd row(K);
+      for (int n = 0; n < K; ++n) row(n) = h[std::size_t(n)][std::size_t(z)];
+      const double target = d[std::size_t(z)] / d[255] - g0[std::size_t(z)];
+      P += row * row.transpose();
+      q += row * target;
+    }
+    Eigen::VectorXd coef = P.ldlt().solve(q);
+    auto curve = [&](int z) {
       double v = g0[std::size_t(z)];
       for (int n = 0; n < K; ++n) v += coef(n) * h[std::size_t(n)][std::size_t(z)];
-      fit.inverse.table[c][z] = float(std::max(0.0, v));
+      return v;
+    };
+    const auto px = SamplePixels(s, g, c, o.samples, o.clip);
+    const int N = int(px.size());
+    for (int iter = 0; iter < 8; ++iter) {
+      // Current log irradiance per sample: weighted mean of ln g(z) - ln t.
+      Eigen::MatrixXd JcJc = Eigen::MatrixXd::Zero(K, K);
+      Eigen::VectorXd Jcr = Eigen::VectorXd::Zero(K);
+      for (int i = 0; i < N; ++i) {
+        double sw = 0, swl = 0;
+        std::vector<std::pair<int, double>> obs;  // (z, ln t)
+        for (std::size_t j = 0; j < s.images.size(); ++j) {
+          const int z = Level(s.images[j][px[std::size_t(i)]], c);
+          const double w = Hat(z, o.clip);
+          const double gz = curve(z);
+          if (w <= 0 || gz <= 1e-9) continue;
+          obs.emplace_back(z, std::log(s.exposure_ms[j]));
+          sw += w * w;
+          swl += w * w * (std::log(gz) - obs.back().second);
+        }
+        if (obs.size() < 2) continue;
+        const double lnE = swl / sw;
+        // Reduced normal equations: with lnE eliminated, J_c rows are centred by the
+        // weighted mean over this sample's observations.
+        Eigen::VectorXd mean_j = Eigen::VectorXd::Zero(K);
+        for (auto [z, lt] : obs) {
+          const double w = Hat(z, o.clip);
+          for (int n = 0; n < K; ++n) mean_j(n) += w * w * h[std::size_t(n)][std::size_t(z)] / curve(z);
+        }
+        mean_j /= sw;
+        for (auto [z, lt] : obs) {
+          const double w = Hat(z, o.clip);
+          Eigen::VectorXd jrow(K);
+          for (int n = 0; n < K; ++n) jrow(n) = w * (h[std::size_t(n)][std::size_t(z)] / curve(z) - mean_j(n));
+          const double r = w * (std::log(curve(z)) - lnE - lt);
+          JcJc += jrow * jrow.transpose();
+          Jcr += jrow * r;
+        }
+      }
+      const Eigen::VectorXd step = (JcJc + 1e-9 * Eigen::MatrixXd::Identity(K, K)).ldlt().solve(-Jcr);
+      // Keep the curve positive over the used levels: halve the step until it is.
+      double alpha = 1;
+      for (int tries = 0; tries < 10; ++tries) {
+        const Eigen::VectorXd trial = coef + alpha * step;
+        bool ok = true;
+        for (int z = o.clip.lo; z <= 255 && ok; ++z) {
+          double v = g0[std::size_t(z)];
+          for (int n = 0; n < K; ++n) v += trial(n) * h[std::size_t(n)][std::size_t(z)];
+          ok = v > 0;
+        }
+        if (ok) break;
+        alpha *= 0.5;
+      }
+      coef += alpha * step;
+      if (alpha * step.norm() < 1e-7) break;
     }
+    for (int z = 0; z < 256; ++z) fit.inverse.table[c][z] = float(std::max(0.0, curve(z)));
   }
   return Finish(fit, s, g, o.clip);
 }
@@ -454,8 +506,18 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
   return out;
 }
 
-RadianceImage MergeHdr(const Sweep& s, const InverseResponse& inv, const PcfTables& pcf,
+RadianceImage MergeHdr(const Sweep& s, const InverseResponse& inv, const NoiseModel& noise,
                        ClipLevels clip) {
+  // Per level and channel: variance of R (noise model plus quantisation).
+  LevelTable var_r{};
+  for (int c = 0; c < 3; ++c)
+    for (int z = 0; z < kLevels; ++z) {
+      const int lo = std::max(0, z - 1), hi = std::min(kLevels - 1, z + 1);
+      const double q = (inv.table[c][hi] - inv.table[c][lo]) / double(hi - lo);
+      const double R = inv.table[c][z];
+      var_r[c][z] = float(R * noise.sigma_s[c] * noise.sigma_s[c] +
+                          noise.sigma_c[c] * noise.sigma_c[c] + q * q / 12.0);
+    }
   const std::size_t n = s.images[0].size();
   RadianceImage out(s.images[0].width(), s.images[0].height());
   std::size_t shortest = 0, longest = 0;
@@ -476,8 +538,9 @@ RadianceImage MergeHdr(const Sweep& s, const InverseResponse& inv, const PcfTabl
           any_bright |= z > clip.hi;
           continue;
         }
-        const double w = pcf[2][c][z];
-        num += w * inv.table[c][z] / s.exposure_ms[j];
+        const double t = s.exposure_ms[j];
+        const double w = t * t / std::max(1e-20, double(var_r[c][z]));
+        num += w * inv.table[c][z] / t;
         den += w;
       }
       if (den > 0) {
@@ -503,7 +566,7 @@ std::vector<ExposureConsistency> MergeConsistency(const Sweep& s, const InverseR
       for (int c = 0; c < 3; ++c) {
         const int z = Level(im[p], c);
         const float L = c == 0 ? merged[p].x : (c == 1 ? merged[p].y : merged[p].z);
-        if (Clipped(z, clip) || !(L > 0)) continue;
+        if (z < std::max(32, clip.lo) || z > std::min(224, clip.hi) || !(L > 0)) continue;
         d.push_back(std::abs(std::log2(float(inv.table[c][z] / g.exposure[k]) / L)));
       }
     double med = NAN;

@@ -29,12 +29,12 @@ void CheckSweep(const Sweep& sweep);
 
 // Levels treated as clipped (no information): below `lo` or above `hi`.
 struct ClipLevels {
-  int lo = 3, hi = 252;
+  int lo = 3, hi = 254;
 };
 
 struct DebevecOptions {
   int samples = 1000;     // pixel locations sampled (stratified by brightness)
-  double lambda = 50.0;   // smoothness weight on g'' (g = ln f^-1)
+  double lambda = 10.0;   // smoothness weight on g'' (g = ln f^-1)
   ClipLevels clip;
 };
 struct RobertsonOptions {
@@ -89,14 +89,18 @@ struct NoiseFit {
 };
 NoiseFit FitNoise(const Sweep& sweep, const InverseResponse& inverse, ClipLevels clip = {});
 
-// Weighted merge of a sweep into radiance L = f^-1(I) / exposure_ms, per channel, weighted
-// by the PCF p2 of each sample (clipped samples get no weight). Pixels clipped in every
-// exposure take the value of the exposure nearest to unclipped.
-RadianceImage MergeHdr(const Sweep& sweep, const InverseResponse& inverse, const PcfTables& pcf,
+// Weighted merge of a sweep into radiance L = f^-1(I) / exposure_ms, per channel. Each
+// sample's confidence is the inverse of its variance under the calibrated noise model,
+// Var(L) = (R sigma_s^2 + sigma_c^2 + q^2 / 12) / t^2 with q the local quantisation step of
+// f^-1: near saturation q explodes and the sample fades out, as the PCF does. Clipped samples
+// get no weight; pixels clipped in every exposure take the value of the exposure nearest to
+// unclipped.
+RadianceImage MergeHdr(const Sweep& sweep, const InverseResponse& inverse, const NoiseModel& noise,
                        ClipLevels clip = {});
 
-// Consistency of a calibration: for each distinct exposure, the median over unclipped
-// samples of |log2(f^-1(I)/exposure / L_merged)|, in stops.
+// Consistency of a calibration: for each distinct exposure, the median over well-exposed
+// samples (levels 32..224, where noise and quantisation are small) of
+// |log2(f^-1(I)/exposure / L_merged)|, in stops.
 struct ExposureConsistency {
   double exposure_ms;
   double median_abs_stops;
