@@ -61,7 +61,7 @@ Command AddSimulateCommand(CLI::App& app) {
   cmd->add_flag("--sweep", a->sweep, "Exposure sweep for calibration: static camera, "
                                      "each exposure --sweep-repeats times");
   cmd->add_option("--sweep-exposures", a->sweep_exposures,
-                  "Comma-separated sweep exposures (ms); default 0.5,1,2,...,128");
+                  "Comma-separated sweep exposures (ms); default half-stops 0.25..128");
   cmd->add_option("--sweep-repeats", a->sweep_repeats, "Frames per sweep exposure")
       ->capture_default_str();
   cmd->add_option("--response", a->response,

@@ -16,5 +16,7 @@ Command AddRadianceCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddContactSheetCommand(CLI::App& app);
 Command AddBenchCommand(CLI::App& app);
+Command AddCalibrateCommand(CLI::App& app);
+Command AddMergeCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

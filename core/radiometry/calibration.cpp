@@ -443,7 +443,7 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
   const std::size_t npx = s.images[0].size();
   for (int c = 0; c < 3; ++c) {
     constexpr int kBins = 48;
-    std::vector<double> bz(kBins, 0), br(kBins, 0), bv(kBins, 0), bn(kBins, 0);
+    std::vector<double> bz(kBins, 0), br(kBins, 0), bv(kBins, 0), bq(kBins, 0), bn(kBins, 0);
     const auto& t = inv.table[c];
     for (const auto& grp : g.images) {
       if (grp.size() < 3) continue;
@@ -458,24 +458,33 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
           sum2 += double(t[std::size_t(z)]) * t[std::size_t(z)];
           zs += z;
         }
+        // Pixels whose mean is near a clipping level have their noise truncated: leave them
+        // out by their mean (not by their samples, which would bias the variance).
+        const double zmean = zs / n;
+        if (zmean < clip.lo + 12 || zmean > clip.hi - 12) continue;
         if (clipped) continue;
         const double m = sum / n;
         const double var = std::max(0.0, (sum2 - n * m * m) / (n - 1));
         const int k = std::clamp(int(std::lround(zs / n)), 1, 254);
         const double step = 0.5 * (t[std::size_t(k + 1)] - t[std::size_t(k - 1)]);
-        if (step * step > 0.5 * var) continue;  // quantisation dominates: no information
         if (m <= 0) continue;
+        // No selection on the sample variance itself (that would bias upwards): bins where
+        // quantisation dominates are dropped below, on their averages.
         const int b = std::clamp(int((std::log10(m / t[128]) + 2.5) / 4.0 * kBins), 0, kBins - 1);
         bz[std::size_t(b)] += zs / n;
         br[std::size_t(b)] += m;
-        bv[std::size_t(b)] += var - step * step / 12.0;
+        bv[std::size_t(b)] += var;
+        bq[std::size_t(b)] += step * step / 12.0;
         bn[std::size_t(b)] += 1;
       }
     }
     double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (int b = 0; b < kBins; ++b) {
       if (bn[std::size_t(b)] < 20) continue;
-      const double x = br[std::size_t(b)] / bn[std::size_t(b)], y = bv[std::size_t(b)] / bn[std::size_t(b)];
+      const double q = bq[std::size_t(b)] / bn[std::size_t(b)];
+      const double raw = bv[std::size_t(b)] / bn[std::size_t(b)];
+      if (q > 0.25 * raw) continue;  // quantisation dominates: little information
+      const double x = br[std::size_t(b)] / bn[std::size_t(b)], y = raw - q;
       out.levels[std::size_t(c)].push_back({bz[std::size_t(b)] / bn[std::size_t(b)], x, y, int(bn[std::size_t(b)])});
       if (y <= 0) continue;
       const double w = bn[std::size_t(b)] / (y * y);

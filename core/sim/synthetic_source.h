@@ -26,7 +26,9 @@ struct SimOptions {
   // Exposure sweep for calibration: static camera, each exposure `sweep_repeats` times.
   // Frames = sweep_exposures_ms.size() * sweep_repeats; `frames` and `ae` are ignored.
   bool sweep = false;
-  std::vector<double> sweep_exposures_ms = {0.5, 1, 2, 4, 8, 16, 32, 64, 128};
+  // Half-stop steps from 0.25 to 128 ms: dense enough to recover steep response knees.
+  std::vector<double> sweep_exposures_ms = {0.25, 0.354, 0.5, 0.707, 1, 1.41, 2, 2.83, 4, 5.66,
+                                            8, 11.3, 16, 22.6, 32, 45.3, 64, 90.5, 128};
   int sweep_repeats = 5;
   // The sensor's true calibration; defaults to the built-in Xtion profile.
   radiometry::InverseResponse response;

@@ -1,0 +1,185 @@
+// hdrfusion calibrate SWEEP --out sensor.json: camera response, noise level function and PCF
+// from an exposure sweep, with a quality report and plots.
+// hdrfusion merge SWEEP --sensor sensor.json --out hdr.exr: the HDR merge of a sweep.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "cli/commands.h"
+#include "cli/plot.h"
+#include "common/error.h"
+#include "io/exr.h"
+#include "io/image_io.h"
+#include "io/sensor_json.h"
+#include "io/sweep.h"
+#include "radiometry/calibration.h"
+#include "radiometry/pcf.h"
+
+namespace hdrf::cli {
+
+namespace fs = std::filesystem;
+using namespace radiometry;
+
+namespace {
+
+void WritePlots(const fs::path& dir, const InverseResponse& inv, const PcfTables& pcf) {
+  fs::create_directories(dir);
+  std::vector<double> x(256);
+  for (int i = 0; i < 256; ++i) x[std::size_t(i)] = i;
+  double top = 0;
+  for (int c = 0; c < 3; ++c) top = std::max(top, double(inv.table[c][255]));
+  Plot response(640, 400, 0, 255, 0, top);
+  const LevelTable d = ResponseDerivative(inv);
+  double dmax = 0;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) dmax = std::max(dmax, double(d[c][i]));
+  Plot deriv(640, 400, 0, 255, 0, dmax);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> y(256), yd(256);
+    for (int i = 0; i < 256; ++i) {
+      y[std::size_t(i)] = inv.table[c][i];
+      yd[std::size_t(i)] = d[c][i];
+    }
+    response.Line(x, y, kChannelColor[c]);
+    deriv.Line(x, yd, kChannelColor[c]);
+  }
+  io::WriteColorPng(dir / "response.png", response.image());
+  io::WriteColorPng(dir / "derivative.png", deriv.image());
+  // PCF family: p1, p2, p3 stacked (p0 = 1 everywhere), one curve per channel.
+  ColorImage stack(640, 3 * 300);
+  for (int k = 1; k <= 3; ++k) {
+    Plot p(640, 300, 0, 255, 0, 1);
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> y(256);
+      for (int i = 0; i < 256; ++i) y[std::size_t(i)] = pcf[k][c][i];
+      p.Line(x, y, kChannelColor[c]);
+    }
+    for (int yy = 0; yy < 300; ++yy)
+      for (int xx = 0; xx < 640; ++xx) stack(xx, (k - 1) * 300 + yy) = p.image()(xx, yy);
+  }
+  io::WriteColorPng(dir / "pcf.png", stack);
+}
+
+}  // namespace
+
+Command AddCalibrateCommand(CLI::App& app) {
+  struct Args {
+    std::string sweep, out, method = "debevec", basis, plots;
+    int emor_components = 6;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand(
+      "calibrate", "Fit camera response, noise and PCF from an exposure sweep; write sensor.json");
+  cmd->add_option("SWEEP", a->sweep, "Exposure sweep folder (FORMATS.md)")->required();
+  cmd->add_option("--out", a->out, "sensor.json to write")->required();
+  cmd->add_option("--method", a->method, "Response fit")
+      ->check(CLI::IsMember({"debevec", "robertson", "emor"}))->capture_default_str();
+  cmd->add_option("--emor-basis", a->basis, "invemor.txt of the EMoR distribution (--method emor)");
+  cmd->add_option("--emor-components", a->emor_components, "EMoR basis components")
+      ->capture_default_str();
+  cmd->add_option("--plots", a->plots, "Folder for response.png, derivative.png, pcf.png");
+  return {cmd, [a] {
+    const Sweep sweep = io::ReadSweep(a->sweep);
+    SensorInfo sensor = io::ReadSensorJson(fs::path(a->sweep) / "sensor.json");
+    std::map<double, int> per_exposure;
+    for (double e : sweep.exposure_ms) ++per_exposure[e];
+    std::printf("sweep %s: %zu frames, %zu exposures from %.4g to %.4g ms\n", a->sweep.c_str(),
+                sweep.images.size(), per_exposure.size(), per_exposure.begin()->first,
+                per_exposure.rbegin()->first);
+    ResponseFit fit;
+    if (a->method == "debevec") {
+      fit = FitDebevec(sweep);
+    } else if (a->method == "robertson") {
+      fit = FitRobertson(sweep);
+    } else {
+      if (a->basis.empty())
+        throw SettingError("--emor-basis", "--method emor needs the EMoR basis file invemor.txt");
+      EmorOptions o;
+      o.components = a->emor_components;
+      fit = FitEmor(sweep, EmorBasis::Load(a->basis), o);
+    }
+    std::printf("\nresponse (%s), scaled so that f^-1(128) = 1 per channel\n", fit.method.c_str());
+    const char* ch = "RGB";
+    for (int c = 0; c < 3; ++c)
+      std::printf("  %c: rms log residual %.4f (%.2f %%), %d sample pixels, f^-1(255)/f^-1(128) = %.2f\n",
+                  ch[c], fit.rms_log_residual[c], 100 * (std::exp(fit.rms_log_residual[c]) - 1),
+                  fit.samples_used[c], fit.inverse.table[c][255]);
+    double max_step = 0;
+    for (auto it = std::next(per_exposure.begin()); it != per_exposure.end(); ++it)
+      max_step = std::max(max_step, std::log2(it->first / std::prev(it)->first));
+    if (max_step > 1.01)
+      std::printf("  note: exposures are up to %.1f stops apart; half-stop steps recover the "
+                  "curve near saturation more accurately\n", max_step);
+    sensor.response = fit.inverse;
+    NoiseModel noise;
+    bool have_noise = false;
+    try {
+      const NoiseFit nf = FitNoise(sweep, fit.inverse);
+      noise = nf.noise;
+      have_noise = true;
+      std::printf("\nnoise level function (Var R = R sigma_s^2 + sigma_c^2)\n");
+      for (int c = 0; c < 3; ++c)
+        std::printf("  %c: sigma_s %.5f  sigma_c %.6f  (%zu brightness bins, rms relative misfit %.2f)\n",
+                    ch[c], noise.sigma_s[c], noise.sigma_c[c], nf.levels[c].size(),
+                    nf.rms_relative_residual[c]);
+      sensor.noise = noise;
+    } catch (const Error& e) {
+      std::printf("\nnoise level function not fitted: %s\n", e.what());
+      sensor.noise.reset();
+      noise.sigma_s = {0.02f, 0.02f, 0.02f};  // for the merge check only
+      noise.sigma_c = {0.002f, 0.002f, 0.002f};
+    }
+    const RadianceImage merged = MergeHdr(sweep, fit.inverse, noise);
+    std::printf("\nconsistency of the merged radiance, per exposure (levels 32-224)\n");
+    for (const auto& e : MergeConsistency(sweep, fit.inverse, merged))
+      std::printf("  %9.4g ms: median |deviation| %.3f stops over %ld samples\n", e.exposure_ms,
+                  e.median_abs_stops, e.samples);
+    io::WriteSensorJson(a->out, sensor);
+    std::printf("\nwrote %s (response%s)\n", a->out.c_str(), have_noise ? " and noise" : " only");
+    if (!a->plots.empty()) {
+      const PcfTables pcf = ComputePcf(fit.inverse, noise);
+      WritePlots(a->plots, fit.inverse, pcf);
+      std::printf("wrote %s/response.png (f^-1 against level, R red, G green, B blue), "
+                  "derivative.png (f' against level), pcf.png (p1, p2, p3 from top, 0..1)\n",
+                  a->plots.c_str());
+    }
+    return 0;
+  }};
+}
+
+Command AddMergeCommand(CLI::App& app) {
+  struct Args {
+    std::string sweep, sensor, out;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("merge", "Merge an exposure sweep into one HDR radiance image");
+  cmd->add_option("SWEEP", a->sweep, "Exposure sweep folder")->required();
+  cmd->add_option("--sensor", a->sensor, "sensor.json with response (and noise)")->required();
+  cmd->add_option("--out", a->out, "Output OpenEXR (float)")->required();
+  return {cmd, [a] {
+    const SensorInfo s = io::ReadSensorJson(a->sensor);
+    if (!s.response)
+      throw InputError(a->sensor, "has no 'response'; run hdrfusion calibrate first");
+    NoiseModel noise;
+    if (s.noise) {
+      noise = *s.noise;
+    } else {
+      std::fprintf(stderr, "merge: %s has no 'noise'; weighting with sigma_s = 0.02, "
+                           "sigma_c = 0.002\n", a->sensor.c_str());
+      noise.sigma_s = {0.02f, 0.02f, 0.02f};
+      noise.sigma_c = {0.002f, 0.002f, 0.002f};
+    }
+    const Sweep sweep = io::ReadSweep(a->sweep);
+    CheckSweep(sweep);
+    const RadianceImage merged = MergeHdr(sweep, *s.response, noise);
+    io::WriteExr(a->out, merged, io::ExrPrecision::kFloat);
+    for (const auto& e : MergeConsistency(sweep, *s.response, merged))
+      std::printf("%9.4g ms: median |deviation| %.3f stops (%ld samples)\n", e.exposure_ms,
+                  e.median_abs_stops, e.samples);
+    std::printf("wrote %s (%dx%d)\n", a->out.c_str(), merged.width(), merged.height());
+    return 0;
+  }};
+}
+
+}  // namespace hdrf::cli
