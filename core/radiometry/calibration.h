@@ -34,7 +34,7 @@ struct ClipLevels {
 
 struct DebevecOptions {
   int samples = 1000;     // pixel locations sampled (stratified by brightness)
-  double lambda = 10.0;   // smoothness weight on g'' (g = ln f^-1)
+  double lambda = 50.0;   // smoothness weight on g'' (g = ln f^-1)
   ClipLevels clip;
 };
 struct RobertsonOptions {
