@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/exr.h"
+#include "io/sensor_json.h"
 #include "io/sequence.h"
 #include "support/test_support.h"
 
@@ -146,6 +147,49 @@ TEST(Cli, SimulateSweepAndBadSettings) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("not empty"), std::string::npos) << r.output;
   EXPECT_EQ(io::SequenceReader((dir / "sweep").string()).size(), 9u);
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+TEST(Cli, CalibrateAndMergeASimulatedSweep) {
+  test::TempDir dir;
+  const std::string sweep = (dir / "sweep").string();
+  RunResult r = RunCli("simulate --out " + sweep + " --sweep --sweep-repeats 3 --size 96x72");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = RunCli("calibrate " + sweep + " --out " + (dir / "s.json").string() + " --plots " +
+             (dir / "plots").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("noise level function"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("median |deviation|"), std::string::npos) << r.output;
+  const SensorInfo s = io::ReadSensorJson(dir / "s.json");
+  ASSERT_TRUE(s.response && s.noise);
+  EXPECT_FLOAT_EQ(s.response->table[1][128], 1.f);
+  EXPECT_EQ(s.camera.width, 96);  // camera block carried over from the sweep
+  for (const char* png : {"response.png", "derivative.png", "pcf.png"})
+    EXPECT_TRUE(fs::exists(dir / "plots" / png)) << png;
+  r = RunCli("merge " + sweep + " --sensor " + (dir / "s.json").string() + " --out " +
+             (dir / "hdr.exr").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(io::ReadExr(dir / "hdr.exr").width(), 96);
+  r = RunCli("calibrate " + sweep + " --out " + (dir / "e.json").string() + " --method emor");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--emor-basis"), std::string::npos) << r.output;
+}
+
+TEST(Cli, CalibrateRefusesASweepWithoutExposures) {
+  test::TempDir dir;
+  const std::string sweep = (dir / "sweep").string();
+  ASSERT_EQ(RunCli("simulate --out " + sweep + " --sweep --sweep-repeats 1 --size 32x24").status, 0);
+  fs::remove(dir / "sweep" / "exposure.txt");
+  const RunResult r = RunCli("calibrate " + sweep + " --out " + (dir / "s.json").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("exposure.txt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "s.json"));
 }
 
 }  // namespace
