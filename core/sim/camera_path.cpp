@@ -13,9 +13,17 @@ double Ease(double t) { return t * t * (3.0 - 2.0 * t); }
 }  // namespace
 
 Pose LookAt(const Vec3& eye, const Vec3& target, double roll) {
-  const Vec3 f = (target - eye).normalized();
-  Vec3 up(0, 0, 1);
-  if (std::abs(f.dot(up)) > 0.99) up = Vec3(0, 1, 0);
+  Vec3 f = (target - eye).normalized();
+  // A hand-held camera rarely looks straight up or down, and the camera's roll is undefined
+  // there: keep the pitch within +-55 degrees so the frame turns smoothly.
+  constexpr double kMaxSin = 0.82;
+  if (std::abs(f.z()) > kMaxSin) {
+    Vec3 h(f.x(), f.y(), 0);
+    if (h.norm() < 1e-6) h = Vec3(1, 0, 0);
+    h.normalize();
+    f = (h * std::sqrt(1 - kMaxSin * kMaxSin) + Vec3(0, 0, f.z() > 0 ? kMaxSin : -kMaxSin)).normalized();
+  }
+  const Vec3 up(0, 0, 1);
   const Vec3 r = f.cross(up).normalized();
   const Vec3 d = f.cross(r);
   Mat3 R;
@@ -56,8 +64,22 @@ CameraPath CameraPath::Handheld(const Scene& scene, std::uint32_t seed, int fram
                      0.004 * Vec3(std::sin(7.3 * t), std::sin(6.1 * t + 1), std::sin(8.7 * t + 2));
     const double s = i / segment_frames;
     const std::size_t k = std::size_t(std::floor(s));
-    const double w = Ease(std::clamp((s - double(k)) * 1.6 - 0.3, 0.0, 1.0));
-    const Vec3 target = (1 - w) * targets[k % targets.size()] + w * targets[(k + 1) % targets.size()];
+    // Eased over the whole segment: peak turn rates of about 1.5-2 degrees per frame at 30 Hz,
+    // a brisk but steady hand.
+    const double w = Ease(s - double(k));
+    // Turn the viewing direction (not the target point) from one target to the next, so the
+    // turn rate stays bounded even when the path between targets passes near the camera.
+    auto dir = [&](const Vec3& t) {
+      Vec3 d = (t - eye).normalized();
+      if (std::abs(d.z()) > 0.7) {  // keep the end points well away from straight down/up
+        const Vec3 h = Vec3(d.x(), d.y(), 0).norm() > 1e-6 ? Vec3(d.x(), d.y(), 0).normalized() : Vec3(1, 0, 0);
+        d = (h * std::sqrt(1 - 0.49) + Vec3(0, 0, d.z() > 0 ? 0.7 : -0.7)).normalized();
+      }
+      return d;
+    };
+    const Eigen::Quaterniond qa = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitX(), dir(targets[k % targets.size()]));
+    const Eigen::Quaterniond qb = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitX(), dir(targets[(k + 1) % targets.size()]));
+    const Vec3 target = eye + qa.slerp(w, qb) * Vec3::UnitX();
     const double roll = 0.05 * std::sin(0.5 * t + ph[1]) + 0.004 * std::sin(9.1 * t);
     path.poses_.push_back(LookAt(eye, target, roll));
   }

@@ -1,0 +1,103 @@
+// Camera tracking: Gauss-Newton on SE(3), coarse to fine, on the normalized-radiance
+// residual weighted by the pixel confidence (the paper's error function), point-to-plane
+// ICP, or both; the brightness-constancy baseline on raw intensity; and exposure
+// compensation after tracking.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/image.h"
+#include "common/se3.h"
+
+namespace hdrf::tracking {
+
+enum class TrackerKind {
+  kNr,         // normalized radiance (photometric), PCF-weighted
+  kNrIcp,      // normalized radiance + point-to-plane ICP
+  kIcp,        // point-to-plane ICP only
+  kIntensity,  // raw 8-bit intensity, brightness constancy: the baseline the paper beats
+};
+TrackerKind ParseTrackerKind(const std::string& s);  // "nr", "nr+icp", "icp", "intensity"
+const char* TrackerName(TrackerKind k);
+
+struct TrackerOptions {
+  TrackerKind kind = TrackerKind::kNrIcp;
+  bool frame_to_model = true;             // false: align to the previous frame instead
+  int levels = 3;                         // pyramid levels (each half the size)
+  std::array<int, 4> iterations = {10, 10, 8, 8};  // per level, coarsest first
+  // Combination: each residual is divided by its expected scale before the robust kernel,
+  // so that 1 cm of point-to-plane distance weighs as much as 0.25 of normalized radiance.
+  float icp_sigma_m = 0.01f;
+  float photo_sigma = 0.25f;
+  float huber_k = 1.345f;                 // Huber threshold, in units of the scales above
+  float icp_max_dist_m = 0.10f;           // ICP association gates
+  float icp_max_angle_deg = 35.f;
+  // Health: a frame is lost (not fused) when fewer than this share of live pixels has a
+  // correspondence, the system is this ill-conditioned, or the pose jumps this far.
+  float min_inlier_share = 0.2f;
+  double max_condition = 1e8;
+  float max_jump_m = 0.25f, max_jump_deg = 25.f;
+  void Check() const;
+};
+
+// One pyramid level of what is tracked against.
+struct ReferenceLevel {
+  PinholeCamera cam;
+  Image<Float3> vertex_w, normal_w;  // world frame; zero = none
+  Image<float> intensity;            // NR (or raw intensity for the baseline)
+};
+struct Reference {
+  std::vector<ReferenceLevel> levels;  // finest first
+  Pose T_world_camera;                 // the pose it was rendered / captured from
+};
+
+// One pyramid level of the live frame.
+struct LiveLevel {
+  PinholeCamera cam;
+  Image<Float3> vertex_c, normal_c;  // camera frame
+  Image<float> intensity, grad_x, grad_y;
+  Image<float> weight;               // PCF confidence (1 for the baseline)
+};
+struct Live {
+  std::vector<LiveLevel> levels;  // finest first
+};
+
+// Builds pyramid levels: depth halved by DownsampleDepth, intensity and weight by 2x2 means.
+Live MakeLive(const DepthImage& depth_m, const Image<float>& intensity, const Image<float>& weight,
+              const PinholeCamera& cam, int levels);
+Reference MakeReference(const Image<Float3>& vertex_w, const Image<Float3>& normal_w,
+                        const Image<float>& intensity, const PinholeCamera& cam, int levels,
+                        const Pose& T_world_camera);
+
+struct TrackResult {
+  Pose T_world_camera = Pose::Identity();
+  double rms_icp_m = 0;        // robust-weighted RMS residuals at the finest level
+  double rms_photo = 0;
+  double inlier_share = 0;     // live pixels with a correspondence, finest level
+  double condition = 0;        // of J^T J at the finest level
+  int iterations = 0;
+  bool lost = false;
+  std::string why;             // why it was judged lost
+};
+
+TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
+                  const TrackerOptions& o);
+
+// Exposure ratio t of the live frame against the model (model radiance = t * live
+// radiance): the confidence-weighted median over matched pixels of the luminance ratio,
+// leaving out saturated or black live pixels and pixels without model radiance.
+struct ExposureEstimate {
+  double ratio = 1;
+  long samples = 0;
+  bool valid = false;
+};
+ExposureEstimate EstimateExposureRatio(const Image<Float3>& model_vertex_w,
+                                       const RadianceImage& model_radiance,
+                                       const RadianceImage& live_radiance,
+                                       const Image<float>& live_confidence,
+                                       const PinholeCamera& cam, const Pose& T_world_live);
+
+}  // namespace hdrf::tracking
