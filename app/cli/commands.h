@@ -18,5 +18,7 @@ Command AddContactSheetCommand(CLI::App& app);
 Command AddBenchCommand(CLI::App& app);
 Command AddCalibrateCommand(CLI::App& app);
 Command AddMergeCommand(CLI::App& app);
+Command AddScanCommand(CLI::App& app);
+Command AddEvalCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
       hdrf::cli::AddRadianceCommand(app),
       hdrf::cli::AddSimulateCommand(app),
       hdrf::cli::AddContactSheetCommand(app),
+      hdrf::cli::AddScanCommand(app),
+      hdrf::cli::AddEvalCommand(app),
       hdrf::cli::AddCalibrateCommand(app),
       hdrf::cli::AddMergeCommand(app),
       hdrf::cli::AddBenchCommand(app),

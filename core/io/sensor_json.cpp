@@ -106,6 +106,13 @@ SensorInfo ReadSensorJson(const std::filesystem::path& file) {
     m.sigma_c = Triple(file, Require(file, n, "sigma_c", "noise."), "noise.sigma_c");
     s.noise = m;
   }
+  if (j.contains("synthetic")) {
+    const json& syn = j["synthetic"];
+    if (!syn.is_object() || !syn.contains("scene") || !syn["scene"].is_string() ||
+        !syn.contains("seed") || !syn["seed"].is_number_unsigned())
+      throw InputError(file, "'synthetic' must be {\"scene\": name, \"seed\": unsigned number}");
+    s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
+  }
   return s;
 }
 
@@ -126,6 +133,7 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
     s.noise->Check(file.string());
     j["noise"] = {{"sigma_s", s.noise->sigma_s}, {"sigma_c", s.noise->sigma_c}};
   }
+  if (s.synthetic) j["synthetic"] = {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}};
   WriteFileAtomically(file, j.dump(2) + "\n");
 }
 

@@ -66,6 +66,7 @@ SensorInfo SyntheticSource::sensor() const {
   s.depth_scale = o_.depth_scale;
   s.response = o_.response;
   s.noise = o_.noise;
+  s.synthetic = SensorInfo::Synthetic{o_.scene, o_.seed};
   return s;
 }
 

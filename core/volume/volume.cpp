@@ -64,33 +64,38 @@ inline Float3 Grid(Float3 p, Float3 origin, float inv_vs) { return (p - origin) 
 }  // namespace
 
 bool Volume::SampleTsdf(Float3 p, float* out) const {
+  // Trilinear over the observed corners, renormalised; undefined when the observed corners
+  // carry less than half of the interpolation weight (far from anything seen).
   const Float3 g = Grid(p, origin_, 1.f / o_.voxel_m());
   const int x = int(std::floor(g.x)), y = int(std::floor(g.y)), z = int(std::floor(g.z));
   const float ax = g.x - x, ay = g.y - y, az = g.z - z;
-  // Fast path: all eight corners in one brick (7 times in 8 along each axis).
+  float acc = 0, wsum = 0;
   if ((x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7 && x >= 0 && y >= 0 && z >= 0 && x < n_ - 1 &&
       y < n_ - 1 && z < n_ - 1) {
+    // Fast path: all eight corners in one brick.
     const int b = index_[std::size_t(BrickIndex(x >> 3, y >> 3, z >> 3))];
     if (b < 0) return false;
     const Voxel* base = &pool_[std::size_t(b) * 512 + std::size_t(((z & 7) * 8 + (y & 7)) * 8 + (x & 7))];
-    float acc = 0;
     for (int k = 0; k < 8; ++k) {
       const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
       const Voxel& v = base[dz * 64 + dy * 8 + dx];
-      if (v.w <= 0) return false;
-      acc += (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az) * v.tsdf;
+      if (v.w <= 0) continue;
+      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
+      acc += w * v.tsdf;
+      wsum += w;
     }
-    *out = acc;
-    return true;
+  } else {
+    for (int k = 0; k < 8; ++k) {
+      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
+      const Voxel* v = Get(x + dx, y + dy, z + dz);
+      if (!v || v->w <= 0) continue;
+      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
+      acc += w * v->tsdf;
+      wsum += w;
+    }
   }
-  float acc = 0;
-  for (int k = 0; k < 8; ++k) {
-    const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-    const Voxel* v = Get(x + dx, y + dy, z + dz);
-    if (!v || v->w <= 0) return false;
-    acc += (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az) * v->tsdf;
-  }
-  *out = acc;
+  if (wsum < 0.5f) return false;
+  *out = acc / wsum;
   return true;
 }
 

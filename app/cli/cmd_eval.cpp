@@ -1,0 +1,123 @@
+// hdrfusion eval SEQUENCE DIR: trajectory error (ATE after Horn alignment, RPE) against the
+// sequence's groundtruth.txt; for synthetic sequences also the mesh's distance to the true
+// surface and its radiance against the true scene radiance.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "common/error.h"
+#include "eval/eval.h"
+#include "io/ply.h"
+#include "io/sequence.h"
+#include "io/text_table.h"
+#include "io/tum.h"
+#include "sim/scene.h"
+
+namespace hdrf::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+double Median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+}  // namespace
+
+Command AddEvalCommand(CLI::App& app) {
+  struct Args {
+    std::string seq, dir;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("eval", "Accuracy of a scan against the sequence's ground truth");
+  cmd->add_option("SEQUENCE", a->seq, "The sequence that was scanned (with groundtruth.txt)")->required();
+  cmd->add_option("DIR", a->dir, "The scan's output folder (trajectory.txt, mesh.ply)")->required();
+  return {cmd, [a] {
+    io::SequenceReadOptions ro;
+    ro.allow_missing_depth = true;
+    const io::SequenceReader seq(a->seq, ro);
+    if (!seq.has_groundtruth())
+      throw InputError(fs::path(a->seq) / "groundtruth.txt", "file is missing: nothing to evaluate against");
+    const auto est = io::ReadTrajectory(fs::path(a->dir) / "trajectory.txt");
+    std::vector<double> gt_t;
+    std::vector<Pose> gt_pose;
+    for (const auto& f : seq.frames())
+      if (f.T_world_camera) {
+        gt_t.push_back(f.timestamp);
+        gt_pose.push_back(*f.T_world_camera);
+      }
+    std::vector<Pose> e, g;
+    for (const auto& p : est)
+      if (auto k = io::NearestTimestamp(gt_t, p.timestamp)) {
+        e.push_back(p.T_world_camera);
+        g.push_back(gt_pose[*k]);
+      }
+    const eval::TrajectoryError te = eval::CompareTrajectories(e, g);
+    json out = {{"pairs", te.pairs},
+                {"ate_rmse_m", te.ate_rmse_m},
+                {"ate_median_m", te.ate_median_m},
+                {"ate_max_m", te.ate_max_m},
+                {"rpe_trans_rmse_m", te.rpe_trans_rmse_m},
+                {"rpe_rot_rmse_deg", te.rpe_rot_rmse_deg}};
+    std::printf("trajectory: %zu frames, ATE RMSE %.4f m (median %.4f, max %.4f), RPE %.4f m / %.3f deg per frame\n",
+                te.pairs, te.ate_rmse_m, te.ate_median_m, te.ate_max_m, te.rpe_trans_rmse_m, te.rpe_rot_rmse_deg);
+    const auto& syn = seq.sensor().synthetic;
+    const fs::path ply = fs::path(a->dir) / "mesh.ply";
+    if (syn && fs::exists(ply)) {
+      const sim::Scene scene = sim::Scene::Build(syn->scene, syn->seed);
+      const mesh::Mesh m = io::ReadPly(ply);
+      // The scan's world is the first scanned camera; ground truth maps it into the scene.
+      const RigidTransform T = ToRigidTransform(g.front());
+      std::vector<double> dist;
+      std::vector<Float3> est_rad, true_rad;
+      const std::size_t step = std::max<std::size_t>(1, m.position.size() / 200000);
+      for (std::size_t i = 0; i < m.position.size(); i += step) {
+        const Float3 p = T.Apply(m.position[i]);
+        dist.push_back(scene.DistanceToSurface(p));
+        if (MaxComponent(m.radiance[i]) > 0) {
+          est_rad.push_back(m.radiance[i]);
+          true_rad.push_back(scene.RadianceAt(p));
+        }
+      }
+      out["mesh_vertices"] = m.position.size();
+      out["mesh_median_distance_m"] = Median(dist);
+      std::printf("mesh: %zu vertices, distance to the true surface: median %.4f m\n", m.position.size(), Median(dist));
+      if (!est_rad.empty()) {
+        // One scale per channel (model units are the first frame's radiance units).
+        double scale[3];
+        for (int c = 0; c < 3; ++c) {
+          std::vector<double> r;
+          for (std::size_t i = 0; i < est_rad.size(); ++i) {
+            const double a_ = c == 0 ? est_rad[i].x : (c == 1 ? est_rad[i].y : est_rad[i].z);
+            const double b_ = c == 0 ? true_rad[i].x : (c == 1 ? true_rad[i].y : true_rad[i].z);
+            if (a_ > 0 && b_ > 0) r.push_back(std::log(b_ / a_));
+          }
+          scale[c] = std::exp(Median(r));
+        }
+        std::vector<double> stops;
+        for (std::size_t i = 0; i < est_rad.size(); ++i)
+          for (int c = 0; c < 3; ++c) {
+            const double a_ = (c == 0 ? est_rad[i].x : (c == 1 ? est_rad[i].y : est_rad[i].z)) * scale[c];
+            const double b_ = c == 0 ? true_rad[i].x : (c == 1 ? true_rad[i].y : true_rad[i].z);
+            if (a_ > 0 && b_ > 0) stops.push_back(std::abs(std::log2(a_ / b_)));
+          }
+        const double within01 = double(std::count_if(stops.begin(), stops.end(), [](double s) { return s <= 0.1; })) / double(stops.size());
+        const double within025 = double(std::count_if(stops.begin(), stops.end(), [](double s) { return s <= 0.25; })) / double(stops.size());
+        out["radiance_median_error_stops"] = Median(stops);
+        out["radiance_within_0.1_stop"] = within01;
+        out["radiance_within_0.25_stop"] = within025;
+        out["radiance_scale"] = {scale[0], scale[1], scale[2]};
+        std::printf("radiance: median error %.3f stops after one scale per channel; %.1f %% within 0.1 stop, %.1f %% within 0.25\n",
+                    Median(stops), 100 * within01, 100 * within025);
+      }
+    }
+    io::WriteFileAtomically(fs::path(a->dir) / "eval.json", out.dump(1) + "\n");
+    return 0;
+  }};
+}
+
+}  // namespace hdrf::cli

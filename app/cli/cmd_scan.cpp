@@ -1,0 +1,190 @@
+// hdrfusion scan SOURCE --out DIR: the whole method on a sequence or the synthetic sensor.
+// Writes trajectory.txt, mesh.ply, renders (OpenEXR + PNG) and report.json. If the source
+// fails midway, what was built so far is still written, then the error is reported.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "cli/source_spec.h"
+#include "common/error.h"
+#include "io/exr.h"
+#include "io/image_io.h"
+#include "io/options_json.h"
+#include "io/ply.h"
+#include "io/text_table.h"
+#include "io/tum.h"
+#include "mesh/mesh.h"
+#include "pipeline/pipeline.h"
+#include "tonemap/display.h"
+
+namespace hdrf::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+ColorImage ShadeNormals(const Image<Float3>& n, const Pose& T_world_camera) {
+  const Eigen::Matrix3d Rt = T_world_camera.rotation().transpose();
+  ColorImage out(n.width(), n.height());
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const Float3 w = n[i];
+    if (Length(w) == 0) {
+      out[i] = {0, 0, 0};
+      continue;
+    }
+    const Eigen::Vector3d c = Rt * Eigen::Vector3d(w.x, w.y, w.z);  // camera frame
+    const double shade = std::clamp(-c.z(), 0.0, 1.0) * 0.85 + 0.15;
+    const auto v = std::uint8_t(255 * shade);
+    out[i] = {v, v, v};
+  }
+  return out;
+}
+
+void WriteRender(const fs::path& dir, const std::string& name, const volume::Volume::Rendering& r,
+                 const Pose& T) {
+  io::WriteExr(dir / (name + ".exr"), r.radiance, io::ExrPrecision::kHalf);
+  io::WriteColorPng(dir / (name + ".png"), tonemap::Reinhard(r.radiance));
+  io::WriteColorPng(dir / (name + "_normals.png"), ShadeNormals(r.normal, T));
+}
+
+}  // namespace
+
+Command AddScanCommand(CLI::App& app) {
+  struct Args {
+    std::string source, out, tracker, device = "cpu", options, response;
+    int volume_res = -1, pcf = -1, max_frames = 0;  // -1: not given
+    double volume_size = -1;
+    bool frame_to_frame = false;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("scan", "Track, fuse and mesh a sequence or the synthetic sensor");
+  cmd->add_option("SOURCE", a->source, "Sequence folder, or synthetic:[scene=room,seed=1,frames=300,ae=smooth,size=320x240]")
+      ->required();
+  cmd->add_option("--out", a->out, "Output folder (created; existing outputs are replaced)")->required();
+  cmd->add_option("--options", a->options, "JSON file of engine settings (flags below override it)");
+  cmd->add_option("--tracker", a->tracker, "nr, nr+icp (default), icp, or intensity (the baseline)")
+      ->check(CLI::IsMember({"nr", "nr+icp", "icp", "intensity"}));
+  cmd->add_flag("--frame-to-frame", a->frame_to_frame, "Track against the previous frame, not the model");
+  cmd->add_option("--volume-res", a->volume_res, "Voxels per side (multiple of 8; default 256)");
+  cmd->add_option("--volume-size", a->volume_size, "Side of the volume in metres (default 6)");
+  cmd->add_option("--pcf", a->pcf, "Pixel confidence p0..p3 (default 1)");
+  cmd->add_option("--device", a->device, "cpu or cuda")->check(CLI::IsMember({"cpu", "cuda"}));
+  cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
+      ->check(CLI::IsMember({"srgb"}));
+  cmd->add_option("--frames", a->max_frames, "Process at most this many frames");
+  return {cmd, [a] {
+    pipeline::PipelineOptions o;
+    if (!a->options.empty()) io::ReadPipelineOptions(a->options, o);
+    if (!a->tracker.empty()) o.tracker.kind = tracking::ParseTrackerKind(a->tracker);
+    if (a->frame_to_frame) o.tracker.frame_to_model = false;
+    if (a->volume_res != -1) o.volume.resolution = a->volume_res;
+    if (a->volume_size != -1) o.volume.size_m = float(a->volume_size);
+    if (a->pcf >= 0) o.pcf = a->pcf;
+    if (a->device == "cuda") o.device = Device::kCuda;
+    o.Check();
+    if (o.device == Device::kCuda) {
+      std::string why;
+      const bool gpu = CudaAvailable(&why);
+      std::fprintf(stderr, "scan: the CUDA engine is not written yet (%s); running on the CPU\n",
+                   gpu ? "a GPU is present" : why.c_str());
+      o.device = Device::kCpu;
+    }
+    auto source = OpenSource(a->source, a->response);
+    const fs::path out = a->out;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
+    pipeline::Pipeline pipe(o, source->sensor().camera, source->sensor());
+    const int total = a->max_frames > 0 ? std::min(a->max_frames, source->size()) : source->size();
+    std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm)\n",
+                 source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
+                 o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m());
+    std::vector<io::TimedPose> trajectory;
+    json frames = json::array();
+    std::optional<Pose> first_true;
+    std::vector<double> exp_err;
+    int lost = 0;
+    pipeline::StageTimes sum;
+    std::string failure;
+    Progress progress("scan", total);
+    try {
+      pipeline::FrameInput f;
+      for (int i = 0; i < total && source->Next(f); ++i) {
+        const pipeline::FrameReport r = pipe.Process(f);
+        trajectory.push_back({r.timestamp, r.T_world_camera});
+        lost += r.tracking.lost;
+        sum.convert += r.ms.convert;
+        sum.normalize += r.ms.normalize;
+        sum.track += r.ms.track;
+        sum.compensate += r.ms.compensate;
+        sum.integrate += r.ms.integrate;
+        sum.raycast += r.ms.raycast;
+        json fr = {{"index", r.index},
+                   {"timestamp", r.timestamp},
+                   {"ms", {{"convert", r.ms.convert}, {"normalize", r.ms.normalize}, {"track", r.ms.track},
+                           {"compensate", r.ms.compensate}, {"integrate", r.ms.integrate}, {"raycast", r.ms.raycast}}},
+                   {"tracking", {{"lost", r.tracking.lost}, {"why", r.tracking.why},
+                                 {"inlier_share", r.tracking.inlier_share}, {"condition", r.tracking.condition},
+                                 {"rms_icp_m", r.tracking.rms_icp_m}, {"rms_photo", r.tracking.rms_photo},
+                                 {"iterations", r.tracking.iterations}}},
+                   {"fused", r.fused},
+                   {"exposure", {{"estimated_ratio", r.exposure_ratio}, {"samples", r.exposure_samples}}}};
+        if (r.exposure_ratio_reported) {
+          fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
+          if (r.index > 0 && r.exposure_samples > 0)
+            exp_err.push_back(std::abs(r.exposure_ratio / *r.exposure_ratio_reported - 1));
+        }
+        frames.push_back(fr);
+        if (r.tracking.lost)
+          std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
+        progress.Step();
+      }
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    progress.Done();
+    const int n = int(trajectory.size());
+    if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
+    // Outputs: everything built so far.
+    io::WriteTrajectory(out / "trajectory.txt", trajectory);
+    std::fprintf(stderr, "scan: extracting the mesh...\n");
+    const mesh::Mesh m = mesh::ExtractMesh(pipe.volume());
+    io::WritePly(out / "mesh.ply", m);
+    WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose());
+    WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity());
+    std::sort(exp_err.begin(), exp_err.end());
+    const double total_ms = sum.total();
+    json report = {{"source", source->description()},
+                   {"frames", n},
+                   {"lost_frames", lost},
+                   {"options", json::parse(io::PipelineOptionsToJson(o))},
+                   {"mean_ms", {{"convert", sum.convert / n}, {"normalize", sum.normalize / n}, {"track", sum.track / n},
+                                {"compensate", sum.compensate / n}, {"integrate", sum.integrate / n},
+                                {"raycast", sum.raycast / n}, {"total", total_ms / n}}},
+                   {"fps", total_ms > 0 ? 1000.0 * n / total_ms : 0},
+                   {"volume", {{"allocated_bricks", pipe.volume().allocated_bricks()},
+                               {"bytes", pipe.volume().bytes()}, {"full", pipe.volume().full()}}},
+                   {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
+                   {"frames_detail", frames}};
+    if (!exp_err.empty()) report["exposure_median_relative_error"] = exp_err[exp_err.size() / 2];
+    if (!failure.empty()) report["error"] = failure;
+    io::WriteFileAtomically(out / "report.json", report.dump(1) + "\n");
+    std::printf("scanned %d frames (%d lost) at %.1f frames/s: %zu mesh vertices, %zu triangles\n", n, lost,
+                total_ms > 0 ? 1000.0 * n / total_ms : 0.0, m.position.size(), m.triangles.size());
+    if (!exp_err.empty())
+      std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * exp_err[exp_err.size() / 2]);
+    std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, report.json}\n",
+                a->out.c_str());
+    if (!failure.empty())
+      throw Error(failure + " (the model of the " + std::to_string(n) + " frames processed was saved in " + a->out + ")");
+    return 0;
+  }};
+}
+
+}  // namespace hdrf::cli

@@ -1,0 +1,53 @@
+#include "cli/source_spec.h"
+
+#include <sstream>
+
+#include "common/error.h"
+#include "io/sequence_source.h"
+
+namespace hdrf::cli {
+
+void ParseSize(const std::string& s, int* w, int* h);  // cmd_simulate.cpp
+
+std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const std::string& response) {
+  const std::string prefix = "synthetic:";
+  if (spec.rfind(prefix, 0) == 0) {
+    sim::SimOptions o;
+    std::stringstream ss(spec.substr(prefix.size()));
+    std::string kv;
+    while (std::getline(ss, kv, ',')) {
+      if (kv.empty()) continue;
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos)
+        throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value");
+      const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+      try {
+        if (k == "scene") o.scene = v;
+        else if (k == "seed") o.seed = std::uint32_t(std::stoul(v));
+        else if (k == "frames") o.frames = std::stoi(v);
+        else if (k == "ae") o.ae.mode = sim::ParseAeMode(v);
+        else if (k == "exposure") o.ae.fixed_ms = std::stod(v);
+        else if (k == "size") ParseSize(v, &o.width, &o.height);
+        else throw SettingError("SOURCE", "unknown synthetic setting '" + k +
+                                              "' (scene, seed, frames, ae, exposure, size)");
+      } catch (const std::logic_error&) {
+        throw SettingError("SOURCE", "cannot parse '" + kv + "' in '" + spec + "'");
+      }
+    }
+    return std::make_unique<pipeline::SyntheticFrameSource>(o);
+  }
+  auto seq = std::make_unique<io::SequenceFrameSource>(spec);
+  if (!seq->sensor().response) {
+    if (response == "srgb") {
+      seq->set_response(radiometry::InverseResponse::Srgb());
+    } else {
+      throw InputError(std::filesystem::path(spec) / "sensor.json",
+                       "has no 'response' calibration: HDR radiance needs the camera response. "
+                       "Calibrate the camera (hdrfusion calibrate) or pass --response srgb to assume "
+                       "an sRGB camera");
+    }
+  }
+  return seq;
+}
+
+}  // namespace hdrf::cli

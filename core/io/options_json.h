@@ -1,0 +1,16 @@
+// The engine's settings in a JSON file (`scan --options FILE`), the same struct the flags
+// and the studio fill. Every key is optional; unknown keys are refused (a typo would
+// otherwise silently do nothing), naming the file and the key.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "pipeline/pipeline.h"
+
+namespace hdrf::io {
+
+void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOptions& options);
+std::string PipelineOptionsToJson(const pipeline::PipelineOptions& options);
+
+}  // namespace hdrf::io

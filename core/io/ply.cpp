@@ -1,0 +1,114 @@
+#include "io/ply.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+#include "io/text_table.h"
+#include "tonemap/display.h"
+
+namespace hdrf::io {
+
+namespace {
+const char* kVertexProps[] = {"float x", "float y", "float z", "float nx", "float ny", "float nz",
+                              "uchar red", "uchar green", "uchar blue", "float radiance_r",
+                              "float radiance_g", "float radiance_b"};
+}
+
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& m) {
+  // Display colours: one Reinhard scale over all vertices with radiance.
+  RadianceImage rad(int(m.radiance.size()), 1);
+  for (std::size_t i = 0; i < m.radiance.size(); ++i) rad[i] = m.radiance[i];
+  const ColorImage display = m.radiance.empty() ? ColorImage() : tonemap::Reinhard(rad);
+  std::ostringstream h;
+  h << "ply\nformat binary_little_endian 1.0\ncomment HDRFusion Studio: linear HDR radiance in "
+       "radiance_r/g/b (model units), display colour tone-mapped\n"
+    << "element vertex " << m.position.size() << "\n";
+  for (const char* p : kVertexProps) h << "property " << p << "\n";
+  h << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto tmp = TemporarySibling(file);
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw InputError(file, "cannot be opened for writing");
+    const std::string header = h.str();
+    out.write(header.data(), std::streamsize(header.size()));
+    std::vector<char> buf;
+    buf.reserve(m.position.size() * 39);
+    auto put = [&](const void* p, std::size_t n) {
+      buf.insert(buf.end(), static_cast<const char*>(p), static_cast<const char*>(p) + n);
+    };
+    for (std::size_t i = 0; i < m.position.size(); ++i) {
+      put(&m.position[i], 12);
+      put(&m.normal[i], 12);
+      const Rgb8 c = display.empty() ? Rgb8{0, 0, 0} : display[i];
+      put(&c, 3);
+      put(&m.radiance[i], 12);
+    }
+    for (const auto& t : m.triangles) {
+      const std::uint8_t three = 3;
+      put(&three, 1);
+      put(t.data(), 12);
+    }
+    out.write(buf.data(), std::streamsize(buf.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw InputError(file, "write failed (disk full?)");
+    }
+  }
+  CommitTemporary(tmp, file);
+}
+
+mesh::Mesh ReadPly(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
+  std::string line;
+  std::size_t nv = 0, nf = 0;
+  int line_no = 0, prop = 0;
+  bool in_vertex = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line_no == 1 && line != "ply") throw InputError(file, 1, "not a PLY file");
+    if (line == "end_header") break;
+    if (line.rfind("format", 0) == 0 && line != "format binary_little_endian 1.0")
+      throw InputError(file, line_no, "only binary little-endian PLY is read, found '" + line + "'");
+    if (line.rfind("element vertex ", 0) == 0) {
+      nv = std::stoull(line.substr(15));
+      in_vertex = true;
+    } else if (line.rfind("element face ", 0) == 0) {
+      nf = std::stoull(line.substr(13));
+      in_vertex = false;
+    } else if (in_vertex && line.rfind("property ", 0) == 0) {
+      if (prop >= 12 || line.substr(9) != kVertexProps[prop])
+        throw InputError(file, line_no, "unexpected vertex property '" + line.substr(9) + "'");
+      ++prop;
+    }
+  }
+  if (prop != 12) throw InputError(file, "vertex properties do not follow FORMATS.md");
+  mesh::Mesh m;
+  m.position.resize(nv);
+  m.normal.resize(nv);
+  m.radiance.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    char rec[39];
+    if (!in.read(rec, 39)) throw InputError(file, "truncated vertex data at vertex " + std::to_string(i));
+    std::memcpy(&m.position[i], rec, 12);
+    std::memcpy(&m.normal[i], rec + 12, 12);
+    std::memcpy(&m.radiance[i], rec + 27, 12);
+  }
+  m.triangles.resize(nf);
+  for (std::size_t i = 0; i < nf; ++i) {
+    char rec[13];
+    if (!in.read(rec, 13) || rec[0] != 3)
+      throw InputError(file, "truncated or non-triangle face " + std::to_string(i));
+    std::memcpy(m.triangles[i].data(), rec + 1, 12);
+    for (int k = 0; k < 3; ++k)
+      if (m.triangles[i][k] < 0 || std::size_t(m.triangles[i][k]) >= nv)
+        throw InputError(file, "face " + std::to_string(i) + " refers to a vertex that does not exist");
+  }
+  return m;
+}
+
+}  // namespace hdrf::io

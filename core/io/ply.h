@@ -1,0 +1,20 @@
+// HDR meshes as binary little-endian PLY (FORMATS.md): x y z, nx ny nz (float), red green
+// blue (uchar, tone-mapped sRGB), radiance_r/g/b (float, linear); faces as
+// "list uchar int vertex_indices".
+#pragma once
+
+#include <filesystem>
+
+#include "mesh/mesh.h"
+
+namespace hdrf::io {
+
+// Display colours come from a global Reinhard tone mapping of the vertex radiance. Written
+// through a temporary file and a rename: an interrupted export leaves nothing half-written.
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& mesh);
+
+// Reads what WritePly writes (and any binary little-endian PLY with the same vertex
+// properties in the same order). Throws InputError naming the file on anything else.
+mesh::Mesh ReadPly(const std::filesystem::path& file);
+
+}  // namespace hdrf::io

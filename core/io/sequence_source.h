@@ -1,0 +1,36 @@
+// A recorded sequence (FORMATS.md) as a pipeline frame source.
+#pragma once
+
+#include "io/sequence.h"
+#include "pipeline/frame_source.h"
+
+namespace hdrf::io {
+
+class SequenceFrameSource : public pipeline::FrameSource {
+ public:
+  explicit SequenceFrameSource(const std::filesystem::path& folder)
+      : seq_(folder), sensor_(seq_.sensor()) {}
+  int size() const override { return int(seq_.size()); }
+  bool Next(pipeline::FrameInput& f) override {
+    if (next_ >= seq_.size()) return false;
+    Frame fr = seq_.ReadFrame(next_++);
+    f.color = std::move(fr.color);
+    f.depth_m = std::move(fr.depth_m);
+    f.timestamp = fr.info.timestamp;
+    f.exposure_ms = fr.info.exposure_ms;
+    f.T_world_camera_true = fr.info.T_world_camera;
+    return true;
+  }
+  const SensorInfo& sensor() const override { return sensor_; }
+  // The documented fallback for sequences without calibration (`--response srgb`).
+  void set_response(const radiometry::InverseResponse& r) { sensor_.response = r; }
+  std::string description() const override { return "sequence " + seq_.folder().string(); }
+  const SequenceReader& reader() const { return seq_; }
+
+ private:
+  SequenceReader seq_;
+  SensorInfo sensor_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace hdrf::io
