@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "io/json_file.h"
 
 namespace hdrf::io {
 
@@ -34,16 +35,7 @@ void RefuseUnknown(const std::filesystem::path& file, const json& obj, const std
 }  // namespace
 
 void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOptions& o) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    std::string msg = e.what();
-    const auto pos = msg.find("parse error");
-    throw InputError(file, "is not valid JSON (" + msg.substr(pos == std::string::npos ? 0 : pos) + ")");
-  }
+  const json j = ReadJsonFile(file);
   if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
   RefuseUnknown(file, j, "", {"volume", "tracker", "nr", "pcf", "bilateral", "device"});
   Get(file, j, "", "pcf", o.pcf);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "io/json_file.h"
 #include "io/text_table.h"
 
 namespace hdrf::io {
@@ -52,20 +53,7 @@ std::array<float, 3> Triple(const std::filesystem::path& file, const json& v,
 }  // namespace
 
 SensorInfo ReadSensorJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in)
-    throw InputError(file, std::filesystem::exists(file) ? "cannot be opened for reading"
-                                                         : "file is missing");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    // e.what() carries "line L, column C"; keep the part after the library's prefix.
-    std::string msg = e.what();
-    const auto pos = msg.find("parse error");
-    throw InputError(file, "is not valid JSON (" + msg.substr(pos == std::string::npos ? 0 : pos) +
-                               ")");
-  }
+  const json j = ReadJsonFile(file);
   if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
 
   SensorInfo s;

@@ -17,20 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int status;
-  std::string output;
-};
+using RunResult = test::CommandResult;
 
-RunResult RunCli(const std::string& args) {
-  const std::string cmd = std::string(HDRF_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buf;
-  while (pipe && fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
-  const int raw = pclose(pipe.release());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+RunResult RunCli(const std::string& args) { return test::RunCommand(std::string(HDRF_CLI) + " " + args); }
 
 TEST(Cli, InfoReportsASequenceWrittenByAnotherTool) {
   test::TempDir dir;

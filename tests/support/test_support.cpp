@@ -1,6 +1,10 @@
 #include "support/test_support.h"
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -50,6 +54,16 @@ std::string ReadText(const fs::path& file) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+CommandResult RunCommand(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
+  const int raw = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
 }
 
 std::string ExpectErrorContaining(const std::function<void()>& fn,

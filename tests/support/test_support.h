@@ -33,6 +33,13 @@ std::filesystem::path SharedData(const std::string& relative);
 void WriteText(const std::filesystem::path& file, const std::string& text);
 std::string ReadText(const std::filesystem::path& file);
 
+// Runs a shell command, capturing stdout and stderr together, and its exit status.
+struct CommandResult {
+  int status;
+  std::string output;
+};
+CommandResult RunCommand(const std::string& command);
+
 // Runs fn, expects it to throw a std::exception whose message contains every needle.
 // Returns the message.
 std::string ExpectErrorContaining(const std::function<void()>& fn,
