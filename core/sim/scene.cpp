@@ -483,19 +483,23 @@ Float3 Scene::RadianceAt(Float3 p) const {
   Hit h;
   int wall = int(std::min_element(wd, wd + 6) - wd);
   float best = std::abs(wd[wall]);
+  float signed_d = wd[wall];  // positive inside the room
   h.normal = kInward[wall];
   h.material = wall_material_[wall];
   for (std::size_t i = 0; i < primitives_.size(); ++i) {
     Float3 n;
-    const float d = std::abs(PrimitiveDistance(primitives_[i], p, &n));
-    if (d < best) {
-      best = d;
+    const float sd = PrimitiveDistance(primitives_[i], p, &n);
+    if (std::abs(sd) < best) {
+      best = std::abs(sd);
+      signed_d = sd;
       h.normal = n;
       h.material = primitives_[i].material;
       h.primitive = int(i);
     }
   }
-  h.point = p;
+  // Shade the nearest surface point, not p itself: a point a little inside an object
+  // would otherwise be in its own shadow.
+  h.point = p - h.normal * signed_d;
   return Shade(h);
 }
 
