@@ -1,6 +1,8 @@
 #include "imaging/imaging.h"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cmath>
 
 #include "common/error.h"
@@ -147,7 +149,18 @@ DepthImage DownsampleDepth(const DepthImage& d) {
 
 DepthImage BilateralDepth(const DepthImage& d, float ss, float sd, int r) {
   DepthImage out(d.width(), d.height());
-  const float is2 = 1.f / (2 * ss * ss), id2 = 1.f / (2 * sd * sd);
+  // Spatial weights once; range weights from a table over |dz| in [0, 3 sigma] (beyond: 0).
+  std::vector<float> spatial(std::size_t((2 * r + 1) * (2 * r + 1)));
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx)
+      spatial[std::size_t((dy + r) * (2 * r + 1) + dx + r)] = std::exp(-(dx * dx + dy * dy) / (2 * ss * ss));
+  constexpr int kBins = 256;
+  std::array<float, kBins + 1> range{};
+  const float max_dz = 3 * sd, to_bin = kBins / max_dz;
+  for (int i = 0; i <= kBins; ++i) {
+    const float dz = float(i) / to_bin;
+    range[std::size_t(i)] = i == kBins ? 0.f : std::exp(-dz * dz / (2 * sd * sd));
+  }
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < d.height(); ++y)
     for (int x = 0; x < d.width(); ++x) {
@@ -157,16 +170,20 @@ DepthImage BilateralDepth(const DepthImage& d, float ss, float sd, int r) {
         continue;
       }
       float sw = 0, sv = 0;
-      for (int dy = -r; dy <= r; ++dy)
+      for (int dy = -r; dy <= r; ++dy) {
+        const int yy = y + dy;
+        if (yy < 0 || yy >= d.height()) continue;
         for (int dx = -r; dx <= r; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= d.width() || yy >= d.height()) continue;
+          const int xx = x + dx;
+          if (xx < 0 || xx >= d.width()) continue;
           const float v = d(xx, yy);
           if (!(v > 0)) continue;
-          const float wgt = std::exp(-(dx * dx + dy * dy) * is2 - (v - c) * (v - c) * id2);
+          const int bin = std::min(kBins, int(std::abs(v - c) * to_bin));
+          const float wgt = spatial[std::size_t((dy + r) * (2 * r + 1) + dx + r)] * range[std::size_t(bin)];
           sw += wgt;
           sv += wgt * v;
         }
+      }
       out(x, y) = sv / sw;
     }
   return out;

@@ -77,6 +77,37 @@ TEST(Imaging, NormalizedRadianceIsExposureInvariant) {
   EXPECT_GT(raw_diff / double(a.color.size()), 30.0);
 }
 
+TEST(Imaging, BilateralFilterSmoothsNoiseAndKeepsDepthEdges) {
+  // A 1 m / 2 m step with 1 cm noise and a hole.
+  DepthImage d(64, 48);
+  std::uint32_t h = 12345;
+  auto noise = [&h] {
+    h = h * 1664525u + 1013904223u;
+    return (float((h >> 8) & 0xffff) / 65535.f - 0.5f) * 0.0346f;  // uniform, sd 1 cm
+  };
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) d(x, y) = (x < 32 ? 1.f : 2.f) + noise();
+  d(10, 10) = 0;
+  const DepthImage f = imaging::BilateralDepth(d);
+  double in2 = 0, out2 = 0;
+  int n = 0;
+  float worst_edge = 0;
+  for (int y = 4; y < 44; ++y)
+    for (int x = 4; x < 60; ++x) {
+      const float truth = x < 32 ? 1.f : 2.f;
+      if (x >= 30 && x <= 33) worst_edge = std::max(worst_edge, std::abs(f(x, y) - truth));
+      if (d(x, y) == 0) continue;
+      in2 += std::pow(d(x, y) - truth, 2);
+      out2 += std::pow(f(x, y) - truth, 2);
+      ++n;
+    }
+  std::printf("bilateral: noise %.4f -> %.4f m; worst error next to the edge %.4f m\n", std::sqrt(in2 / n),
+              std::sqrt(out2 / n), worst_edge);
+  EXPECT_LT(std::sqrt(out2 / n), 0.5 * std::sqrt(in2 / n));
+  EXPECT_LT(worst_edge, 0.03f);  // no blending across the 1 m step
+  EXPECT_EQ(f(10, 10), 0.f);     // holes stay holes
+}
+
 TEST(Volume, FusedDepthMatchesTruthAndRaycastAgrees) {
   const auto frames = Frames(12, sim::AeMode::kFixed, /*exact_depth=*/true);
   volume::VolumeOptions vo;
