@@ -6,33 +6,35 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "imaging/imaging_impl.h"
 
 namespace hdrf::imaging {
 
 void ConvertFrame(const ColorImage& color, const radiometry::InverseResponse& inv,
                   const radiometry::PcfTables& pcf, int k, RadianceImage& radiance,
-                  Image<float>& confidence, Image<float>& max_confidence) {
+                  Image<float>& confidence, Image<float>& max_confidence, Device device) {
   if (k < 0 || k > 3) throw SettingError("pcf", "must be 0, 1, 2 or 3 (p0..p3)");
   const int w = color.width(), h = color.height();
   if (radiance.width() != w || radiance.height() != h) radiance = RadianceImage(w, h);
   if (confidence.width() != w || confidence.height() != h) confidence = Image<float>(w, h);
   if (max_confidence.width() != w || max_confidence.height() != h) max_confidence = Image<float>(w, h);
-  const auto& p = pcf[k];
+  const auto inverse = inv.Flat();
+  std::array<float, 3 * 256> p{};
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) p[std::size_t(c * 256 + i)] = pcf[k][c][i];
+  if (device == Device::kCuda) {
+#if HDRF_HAS_CUDA
+    detail::ConvertFrameCuda(color, inverse.data(), p.data(), radiance, confidence, max_confidence);
+    return;
+#else
+    ThrowNoCudaBackend();
+#endif
+  }
   const long n = long(color.size());
 #pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    const Rgb8 c = color[std::size_t(i)];
-    radiance[std::size_t(i)] = {inv.table[0][c.r], inv.table[1][c.g], inv.table[2][c.b]};
-    const std::uint8_t lv[3] = {c.r, c.g, c.b};
-    float sum = 0, mx = 0;
-    for (int ch = 0; ch < 3; ++ch) {
-      const float q = (lv[ch] == 0 || lv[ch] == 255) ? 0.f : p[ch][lv[ch]];
-      sum += q;
-      mx = std::max(mx, q);
-    }
-    confidence[std::size_t(i)] = sum / 3.f;
-    max_confidence[std::size_t(i)] = mx;
-  }
+  for (long i = 0; i < n; ++i)
+    ConvertPixel(color[std::size_t(i)], inverse.data(), p.data(), &radiance[std::size_t(i)],
+                 &confidence[std::size_t(i)], &max_confidence[std::size_t(i)]);
 }
 
 Image<float> Luminance(const RadianceImage& r) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/camera.h"
+#include "common/cuda_runtime.h"
 #include "common/image.h"
 #include "radiometry/pcf.h"
 #include "radiometry/response.h"
@@ -15,9 +16,16 @@ namespace hdrf::imaging {
 // radiance units of the live frame and estimates exposure ratios itself), and the
 // confidence of each pixel: the mean over channels of PCF p_k (k = pcf_power, 0..3), with
 // saturated or black channels (level 255 or 0) given confidence 0.
+// Runs on `device` (the CUDA version is checked against this one by tests/gpu).
 void ConvertFrame(const ColorImage& color, const radiometry::InverseResponse& inverse,
                   const radiometry::PcfTables& pcf, int pcf_power, RadianceImage& radiance,
-                  Image<float>& confidence, Image<float>& max_confidence);
+                  Image<float>& confidence, Image<float>& max_confidence,
+                  Device device = Device::kCpu);
+
+namespace detail {
+void ConvertFrameCuda(const ColorImage& color, const float* inverse, const float* pcf,
+                      RadianceImage& radiance, Image<float>& confidence, Image<float>& max_confidence);
+}  // namespace detail
 
 // Luminance of a radiance image (Rec. 709).
 Image<float> Luminance(const RadianceImage& radiance);

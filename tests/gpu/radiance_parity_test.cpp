@@ -51,3 +51,39 @@ TEST(GpuParity, RadianceConversionMatchesCpu) {
 
 }  // namespace
 }  // namespace hdrf::radiometry
+
+#include "imaging/imaging.h"
+#include "radiometry/pcf.h"
+#include "sim/builtin_sensor.h"
+
+namespace hdrf::imaging {
+namespace {
+
+TEST(GpuParity, FrameConversionRadianceAndConfidenceMatchCpu) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const SensorInfo s = sim::BuiltinXtionProfile();
+  const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> level(0, 255);
+  ColorImage img(320, 240);
+  for (std::size_t i = 0; i < img.size(); ++i)
+    img[i] = {std::uint8_t(level(rng)), std::uint8_t(level(rng)), std::uint8_t(level(rng))};
+  for (int k = 0; k <= 3; ++k) {
+    RadianceImage rc, rg;
+    Image<float> cc, cg, mc, mg;
+    ConvertFrame(img, *s.response, pcf, k, rc, cc, mc, Device::kCpu);
+    ConvertFrame(img, *s.response, pcf, k, rg, cg, mg, Device::kCuda);
+    double worst = 0;
+    for (std::size_t i = 0; i < img.size(); ++i) {
+      worst = std::max(worst, double(std::abs(rc[i].x - rg[i].x) + std::abs(rc[i].y - rg[i].y) +
+                                     std::abs(rc[i].z - rg[i].z)));
+      worst = std::max(worst, double(std::abs(cc[i] - cg[i]) + std::abs(mc[i] - mg[i])));
+    }
+    std::printf("frame conversion parity, PCF p%d: max absolute difference %.3g\n", k, worst);
+    EXPECT_LE(worst, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace hdrf::imaging
