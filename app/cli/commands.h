@@ -11,6 +11,9 @@ struct Command {
   std::function<int()> run;  // runs it; returns the exit status
 };
 
+// "WIDTHxHEIGHT" (e.g. 320x240); throws SettingError naming --size otherwise.
+void ParseSize(const std::string& s, int* w, int* h);
+
 Command AddInfoCommand(CLI::App& app);
 Command AddRadianceCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);

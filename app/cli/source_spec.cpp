@@ -1,13 +1,13 @@
 #include "cli/source_spec.h"
 
+#include "cli/commands.h"
+
 #include <sstream>
 
 #include "common/error.h"
 #include "io/sequence_source.h"
 
 namespace hdrf::cli {
-
-void ParseSize(const std::string& s, int* w, int* h);  // cmd_simulate.cpp
 
 std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const std::string& response) {
   const std::string prefix = "synthetic:";

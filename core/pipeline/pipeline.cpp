@@ -105,8 +105,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   if (!rep.tracking.lost) {
     RadianceImage scaled(radiance.width(), radiance.height());
     for (std::size_t i = 0; i < radiance.size(); ++i) scaled[i] = radiance[i] * float(t_ratio);
-    const Image<Float3> vc = imaging::VertexMap(depth, cam_);
-    const Image<Float3> nc = imaging::NormalMap(vc);
+    // The finest tracking level already holds this frame's normals (same filtered depth).
+    const Image<Float3>& nc = live.levels[0].normal_c;
     volume::Volume::FrameInput fi{&depth, &nc, &scaled, &nr, &conf, &maxconf, cam_, pose_};
     volume_.Integrate(fi);
     rep.fused = true;
