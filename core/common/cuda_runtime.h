@@ -22,6 +22,9 @@ bool CudaAvailable(std::string* why = nullptr);
 // Name and memory of GPU 0, for reports ("" when none).
 std::string CudaDeviceDescription();
 
+// Bytes of GPU 0's memory in use (by every process), 0 when none.
+std::size_t CudaMemoryUsed();
+
 namespace cuda {
 void* Malloc(std::size_t bytes);
 void Free(void* ptr) noexcept;

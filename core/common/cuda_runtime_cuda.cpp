@@ -29,6 +29,15 @@ std::string CudaDeviceDescription() {
          std::to_string(prop.totalGlobalMem / (1024ull * 1024ull)) + " MiB)";
 }
 
+std::size_t CudaMemoryUsed() {
+  std::size_t free_b = 0, total_b = 0;
+  if (cudaMemGetInfo(&free_b, &total_b) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return total_b - free_b;
+}
+
 namespace cuda {
 void* Malloc(std::size_t bytes) {
   void* p = nullptr;

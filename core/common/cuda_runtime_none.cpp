@@ -10,6 +10,7 @@ bool CudaAvailable(std::string* why) {
   return false;
 }
 std::string CudaDeviceDescription() { return ""; }
+std::size_t CudaMemoryUsed() { return 0; }
 
 namespace cuda {
 void* Malloc(std::size_t) { ThrowNoCudaBackend(); }

@@ -7,6 +7,7 @@
 
 #include "common/cuda_runtime.h"
 #include "common/image.h"
+#include "common/image_view.h"
 
 namespace hdrf {
 
@@ -62,6 +63,8 @@ class DeviceImage {
   }
   int width() const { return width_; }
   int height() const { return height_; }
+  ImageView<T> view() { return {buffer_.data(), width_, height_}; }
+  ImageView<const T> view() const { return {buffer_.data(), width_, height_}; }
   T* data() { return buffer_.data(); }
   const T* data() const { return buffer_.data(); }
 

@@ -7,6 +7,7 @@
 #include "common/camera.h"
 #include "common/cuda_runtime.h"
 #include "common/image.h"
+#include "imaging/imaging_impl.h"
 #include "radiometry/pcf.h"
 #include "radiometry/response.h"
 
@@ -48,6 +49,8 @@ Image<float> NormalizedRadiance(const Image<float>& luminance, const NormalizedR
 Image<float> Downsample(const Image<float>& img);         // 2x2 mean
 DepthImage DownsampleDepth(const DepthImage& depth);      // mean of valid neighbours close in depth
 
+// Weight tables of the bilateral filter (radius 1..kBilateralMaxRadius).
+BilateralTables MakeBilateralTables(float sigma_space_px, float sigma_depth_m, int radius);
 // Edge-preserving bilateral filter of a depth map (metres; 0 = no data stays 0).
 DepthImage BilateralDepth(const DepthImage& depth, float sigma_space_px = 2.0f,
                           float sigma_depth_m = 0.03f, int radius = 3);

@@ -1,8 +1,11 @@
 #include "pipeline/pipeline.h"
 
 #include <chrono>
+#include <string>
+#include <vector>
 
 #include "common/error.h"
+#include "pipeline/backend.h"
 
 namespace hdrf::pipeline {
 
@@ -11,13 +14,123 @@ using Clock = std::chrono::steady_clock;
 double Ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
-// Grey level in [0, 1] of the delivered colour: the brightness-constancy baseline's input.
-Image<float> RawIntensity(const ColorImage& c) {
-  Image<float> out(c.width(), c.height());
-  for (std::size_t i = 0; i < c.size(); ++i) out[i] = (c[i].r + c[i].g + c[i].b) / 765.f;
-  return out;
-}
+
+// The reference backend: host images, OpenMP loops.
+class CpuBackend final : public Backend {
+ public:
+  explicit CpuBackend(const BackendSetup& s)
+      : o_(*s.options), cam_(s.camera), volume_(o_.volume),
+        bilateral_(imaging::MakeBilateralTables(2.0f, 0.03f, 3)) {
+    inverse_.assign(s.inverse, s.inverse + 768);
+    pcf_.assign(s.pcf, s.pcf + 768);
+  }
+
+  void Convert(const ColorImage& color, const DepthImage& depth_m) override {
+    const int w = color.width(), h = color.height();
+    radiance_ = RadianceImage(w, h);
+    conf_ = Image<float>(w, h);
+    maxconf_ = Image<float>(w, h);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < long(color.size()); ++i)
+      imaging::ConvertPixel(color[std::size_t(i)], inverse_.data(), pcf_.data(), &radiance_[std::size_t(i)],
+                            &conf_[std::size_t(i)], &maxconf_[std::size_t(i)]);
+    if (o_.bilateral) {
+      depth_ = DepthImage(w, h);
+#pragma omp parallel for schedule(static)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) depth_(x, y) = imaging::BilateralPixel(View(depth_m), bilateral_, x, y);
+    } else {
+      depth_ = depth_m.Clone();
+    }
+  }
+
+  void Normalize(const ColorImage& color) override {
+    nr_ = imaging::NormalizedRadiance(imaging::Luminance(radiance_), o_.nr);
+    if (o_.tracker.kind == tracking::TrackerKind::kIntensity) {
+      track_image_ = Image<float>(color.width(), color.height());
+      for (std::size_t i = 0; i < color.size(); ++i) track_image_[i] = imaging::RawIntensityPixel(color[i]);
+      track_weight_ = Image<float>(color.width(), color.height(), 1.f);
+    } else {
+      track_image_ = nr_.Clone();
+      track_weight_ = conf_.Clone();
+    }
+  }
+
+  void BuildLive() override {
+    live_ = tracking::MakeLive(depth_, track_image_, track_weight_, cam_, o_.tracker.levels);
+  }
+
+  tracking::GnSystem Accumulate(int level, const Pose& T_world_ref, const Pose& T_world_live) override {
+    return tracking::AccumulateCpu(reference_.levels[std::size_t(level)].view(), T_world_ref,
+                                   live_.levels[std::size_t(level)].view(), T_world_live, o_.tracker);
+  }
+
+  long LiveValid() override {
+    long n = 0;
+    const auto& v = live_.levels[0].vertex_c;
+    for (std::size_t i = 0; i < v.size(); ++i) n += v[i].z > 0;
+    return n;
+  }
+
+  tracking::ExposureEstimate EstimateExposure(const Pose& T) override {
+    return tracking::EstimateExposureRatio(render_.vertex, render_.radiance, radiance_, conf_, cam_, T);
+  }
+
+  void Integrate(const Pose& T, float ratio) override {
+    // The finest tracking level already holds this frame's normals (same filtered depth).
+    volume::Volume::FrameInput fi{&depth_, &live_.levels[0].normal_c, &radiance_, &nr_, &conf_, &maxconf_,
+                                  cam_, T, ratio};
+    volume_.Integrate(fi);
+  }
+  std::size_t AllocatedBricks() override { return volume_.allocated_bricks(); }
+  std::size_t VolumeBytes() override { return volume_.bytes(); }
+
+  void Raycast(const Pose& T) override { render_ = volume_.Raycast(cam_, T); }
+
+  void ReferenceFromRender() override {
+    reference_ = tracking::MakeReference(render_.vertex, render_.normal, render_.nr, cam_, o_.tracker.levels,
+                                         Pose::Identity());
+  }
+  void ReferenceFromLive(const Pose& T_pose) override {
+    // Frame to frame: the live frame itself, in world coordinates at its pose.
+    const RigidTransform T = ToRigidTransform(T_pose);
+    const auto& L0 = live_.levels[0];
+    Image<Float3> vw(cam_.width, cam_.height), nw(cam_.width, cam_.height);
+    for (std::size_t i = 0; i < vw.size(); ++i)
+      if (L0.vertex_c[i].z > 0 && Length(L0.normal_c[i]) > 0) {
+        vw[i] = T.Apply(L0.vertex_c[i]);
+        nw[i] = T.Rotate(L0.normal_c[i]);
+      }
+    reference_ = tracking::MakeReference(vw, nw, track_image_, cam_, o_.tracker.levels, T_pose);
+  }
+
+  volume::Volume::Rendering Render(const Pose& T) override { return volume_.Raycast(cam_, T); }
+  const volume::Volume& HostVolume() override { return volume_; }
+  RadianceImage LiveRadiance() override { return radiance_.Clone(); }
+  Image<float> LiveNr() override { return nr_.Clone(); }
+
+ private:
+  const PipelineOptions& o_;
+  PinholeCamera cam_;
+  std::vector<float> inverse_, pcf_;
+  volume::Volume volume_;
+  imaging::BilateralTables bilateral_;
+  RadianceImage radiance_;
+  Image<float> conf_, maxconf_, nr_, track_image_, track_weight_;
+  DepthImage depth_;
+  tracking::Live live_;
+  tracking::Reference reference_;
+  volume::Volume::Rendering render_;
+};
 }  // namespace
+
+std::unique_ptr<Backend> MakeCpuBackend(const BackendSetup& setup) {
+  return std::make_unique<CpuBackend>(setup);
+}
+
+#if !HDRF_HAS_CUDA
+std::unique_ptr<Backend> MakeCudaBackend(const BackendSetup&) { ThrowNoCudaBackend(); }
+#endif
 
 void PipelineOptions::Check() const {
   volume.Check();
@@ -29,7 +142,7 @@ void PipelineOptions::Check() const {
 
 Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
                    const SensorInfo& sensor)
-    : o_((options.Check(), options)), cam_(camera), volume_(o_.volume) {
+    : o_((options.Check(), options)), cam_(camera) {
   if (!camera.Valid()) throw SettingError("camera", "intrinsics must be positive");
   if (!sensor.response)
     throw Error("the sensor has no response calibration (sensor.json 'response'); calibrate it "
@@ -45,9 +158,29 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
                      0.002f * inverse_.table[2][128]};
   }
   pcf_ = radiometry::ComputePcf(inverse_, noise);
+  const auto inverse = inverse_.Flat();
+  std::vector<float> p(768);
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) p[std::size_t(c * 256 + i)] = pcf_[o_.pcf][c][i];
+  const BackendSetup setup{&o_, cam_, inverse.data(), p.data()};
+  if (o_.device == Device::kCuda) {
+    std::string why;
+    if (CudaAvailable(&why)) {
+      backend_ = MakeCudaBackend(setup);
+      device_ = Device::kCuda;
+    } else {
+      device_note_ = "CUDA requested but not usable (" + why + "); running on the CPU";
+    }
+  }
+  if (!backend_) backend_ = MakeCpuBackend(setup);
 }
 
-volume::Volume::Rendering Pipeline::Render(const Pose& T) const { return volume_.Raycast(cam_, T); }
+Pipeline::~Pipeline() = default;
+
+volume::Volume::Rendering Pipeline::Render(const Pose& T) const { return backend_->Render(T); }
+const volume::Volume& Pipeline::volume() const { return backend_->HostVolume(); }
+std::size_t Pipeline::volume_bytes() const { return backend_->VolumeBytes(); }
+Backend& Pipeline::backend() const { return *backend_; }
 
 FrameReport Pipeline::Process(const FrameInput& in) {
   if (in.color.width() != cam_.width || in.color.height() != cam_.height ||
@@ -57,41 +190,42 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   FrameReport rep;
   rep.index = index_;
   rep.timestamp = in.timestamp;
-  const auto t0 = Clock::now();
+  Backend& b = *backend_;
+  auto now = [&] {
+    b.Synchronize();
+    return Clock::now();
+  };
+  const auto t0 = now();
   // 1. Convert: radiance and confidence; depth filtering.
-  RadianceImage radiance;
-  Image<float> conf, maxconf;
-  imaging::ConvertFrame(in.color, inverse_, pcf_, o_.pcf, radiance, conf, maxconf);
-  const DepthImage depth = o_.bilateral ? imaging::BilateralDepth(in.depth_m) : in.depth_m.Clone();
-  const auto t1 = Clock::now();
+  b.Convert(in.color, in.depth_m);
+  const auto t1 = now();
   // 2. Normalize.
-  const Image<float> nr = imaging::NormalizedRadiance(imaging::Luminance(radiance), o_.nr);
+  b.Normalize(in.color);
   const bool baseline = o_.tracker.kind == tracking::TrackerKind::kIntensity;
-  const Image<float> track_image = baseline ? RawIntensity(in.color) : nr.Clone();
-  Image<float> track_weight = baseline ? Image<float>(cam_.width, cam_.height, 1.f) : conf.Clone();
-  const auto t2 = Clock::now();
+  const auto t2 = now();
   // 3. Track.
-  const tracking::Live live = tracking::MakeLive(depth, track_image, track_weight, cam_, o_.tracker.levels);
-  if (index_ == 0 || !reference_) {
+  b.BuildLive();
+  if (index_ == 0 || !have_reference_) {
     previous_pose_ = pose_;
     rep.tracking.T_world_camera = pose_;
     rep.tracking.inlier_share = 1;
   } else {
     // Start from a constant-velocity prediction (the last inter-frame motion, repeated).
     const Pose predicted = se3::Orthonormalized(pose_ * (previous_pose_.inverse() * pose_));
-    rep.tracking = tracking::Track(*reference_, live, predicted, o_.tracker);
+    const Pose T_ref = reference_pose_;
+    rep.tracking = tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T_ref, T); },
+                                   o_.tracker.levels, b.LiveValid(), predicted, o_.tracker);
     if (!rep.tracking.lost) {
       previous_pose_ = pose_;
       pose_ = rep.tracking.T_world_camera;
     }
   }
   rep.T_world_camera = pose_;
-  const auto t3 = Clock::now();
+  const auto t3 = now();
   // 4. Exposure compensation against the model as seen from the last pose.
   double t_ratio = 1;
   if (index_ > 0 && have_render_ && !rep.tracking.lost) {
-    const auto est = tracking::EstimateExposureRatio(last_render_.vertex, last_render_.radiance,
-                                                     radiance, conf, cam_, pose_);
+    const auto est = b.EstimateExposure(pose_);
     rep.exposure_samples = est.samples;
     if (est.valid) t_ratio = est.ratio;
   }
@@ -100,40 +234,29 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     if (index_ == 0) first_exposure_ms_ = in.exposure_ms;
     if (first_exposure_ms_) rep.exposure_ratio_reported = *first_exposure_ms_ / *in.exposure_ms;
   }
-  const auto t4 = Clock::now();
+  const auto t4 = now();
   // 5. Integrate (lost frames are not fused).
   if (!rep.tracking.lost) {
-    RadianceImage scaled(radiance.width(), radiance.height());
-    for (std::size_t i = 0; i < radiance.size(); ++i) scaled[i] = radiance[i] * float(t_ratio);
-    // The finest tracking level already holds this frame's normals (same filtered depth).
-    const Image<Float3>& nc = live.levels[0].normal_c;
-    volume::Volume::FrameInput fi{&depth, &nc, &scaled, &nr, &conf, &maxconf, cam_, pose_};
-    volume_.Integrate(fi);
+    b.Integrate(pose_, float(t_ratio));
     rep.fused = true;
   }
-  rep.allocated_bricks = volume_.allocated_bricks();
-  const auto t5 = Clock::now();
+  rep.allocated_bricks = b.AllocatedBricks();
+  const auto t5 = now();
   // 6. Ray cast the model from the new pose: the next frame's reference.
   if (rep.fused || !have_render_) {
-    last_render_ = volume_.Raycast(cam_, pose_);
+    b.Raycast(pose_);
     have_render_ = true;
   }
   if (o_.tracker.frame_to_model && !baseline) {
-    reference_ = tracking::MakeReference(last_render_.vertex, last_render_.normal, last_render_.nr,
-                                         cam_, o_.tracker.levels, pose_);
-  } else if (!rep.tracking.lost || !reference_) {
-    // Frame to frame: the live frame itself, in world coordinates at its pose.
-    const RigidTransform T = ToRigidTransform(pose_);
-    const auto& L0 = live.levels[0];
-    Image<Float3> vw(cam_.width, cam_.height, Float3{0, 0, 0}), nw(cam_.width, cam_.height, Float3{0, 0, 0});
-    for (std::size_t i = 0; i < vw.size(); ++i)
-      if (L0.vertex_c[i].z > 0 && Length(L0.normal_c[i]) > 0) {
-        vw[i] = T.Apply(L0.vertex_c[i]);
-        nw[i] = T.Rotate(L0.normal_c[i]);
-      }
-    reference_ = tracking::MakeReference(vw, nw, track_image, cam_, o_.tracker.levels, pose_);
+    b.ReferenceFromRender();
+    reference_pose_ = pose_;
+    have_reference_ = true;
+  } else if (!rep.tracking.lost || !have_reference_) {
+    b.ReferenceFromLive(pose_);
+    reference_pose_ = pose_;
+    have_reference_ = true;
   }
-  const auto t6 = Clock::now();
+  const auto t6 = now();
   rep.ms = {Ms(t0, t1), Ms(t1, t2), Ms(t2, t3), Ms(t3, t4), Ms(t4, t5), Ms(t5, t6)};
   ++index_;
   return rep;

@@ -3,6 +3,7 @@
 // calls it directly, the studio will wrap it in a thread.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,13 +19,15 @@
 
 namespace hdrf::pipeline {
 
+class Backend;
+
 struct PipelineOptions {
   volume::VolumeOptions volume;
   tracking::TrackerOptions tracker;
   imaging::NormalizedRadianceOptions nr;
   int pcf = 1;                  // PCF variant p0..p3 for tracking and fusion (paper: p1 best)
   bool bilateral = true;        // bilateral filter on depth before tracking
-  Device device = Device::kCpu; // the CUDA backend is a later step: kCuda falls back, said so
+  Device device = Device::kCpu; // kCuda: the CUDA backend where a GPU is usable, else the CPU
   void Check() const;           // throws SettingError naming the setting
 };
 
@@ -57,30 +60,37 @@ struct FrameReport {
 class Pipeline {
  public:
   Pipeline(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor);
+  ~Pipeline();
 
   FrameReport Process(const FrameInput& frame);
 
-  const volume::Volume& volume() const { return volume_; }
+  // The model (a host copy, refreshed on each call after new frames, on the CUDA backend).
+  const volume::Volume& volume() const;
+  std::size_t volume_bytes() const;  // voxel pool + brick index, where the model lives
   const PipelineOptions& options() const { return o_; }
+  Device device() const { return device_; }  // where the engine actually runs
+  // Why the engine runs elsewhere than asked ("" when it runs where asked).
+  const std::string& device_note() const { return device_note_; }
   const Pose& pose() const { return pose_; }
   int frames() const { return index_; }
   // Renders the model from a pose (radiance, normals, depth, NR).
   volume::Volume::Rendering Render(const Pose& T_world_camera) const;
+  Backend& backend() const;  // the stages, for tests that compare backends
 
  private:
   PipelineOptions o_;
   PinholeCamera cam_;
   radiometry::InverseResponse inverse_;
   radiometry::PcfTables pcf_;
-  volume::Volume volume_;
+  std::unique_ptr<Backend> backend_;
+  Device device_ = Device::kCpu;
+  std::string device_note_;
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
+  Pose reference_pose_ = Pose::Identity();
   int index_ = 0;
   std::optional<double> first_exposure_ms_;
-  // Reference for the next frame: the model ray cast at the last pose (frame-to-model) or
-  // the last live frame (frame-to-frame).
-  std::optional<tracking::Reference> reference_;
-  volume::Volume::Rendering last_render_;
+  bool have_reference_ = false;
   bool have_render_ = false;
 };
 

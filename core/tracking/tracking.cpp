@@ -38,15 +38,15 @@ void TrackerOptions::Check() const {
 namespace {
 
 Image<float> GradX(const Image<float>& im) {
-  Image<float> g(im.width(), im.height(), 0.f);
+  Image<float> g(im.width(), im.height());
   for (int y = 0; y < im.height(); ++y)
-    for (int x = 1; x + 1 < im.width(); ++x) g(x, y) = 0.5f * (im(x + 1, y) - im(x - 1, y));
+    for (int x = 0; x < im.width(); ++x) g(x, y) = imaging::GradXPixel(View(im), x, y);
   return g;
 }
 Image<float> GradY(const Image<float>& im) {
-  Image<float> g(im.width(), im.height(), 0.f);
-  for (int y = 1; y + 1 < im.height(); ++y)
-    for (int x = 0; x < im.width(); ++x) g(x, y) = 0.5f * (im(x, y + 1) - im(x, y - 1));
+  Image<float> g(im.width(), im.height());
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = 0; x < im.width(); ++x) g(x, y) = imaging::GradYPixel(View(im), x, y);
   return g;
 }
 template <typename T>
@@ -60,127 +60,78 @@ Image<T> Subsample(const Image<T>& im) {
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
-struct Accum {
-  Mat6 H = Mat6::Zero();
-  Vec6d g = Vec6d::Zero();
-  double icp_r2 = 0, photo_r2 = 0, icp_w = 0, photo_w = 0;
-  long icp_n = 0, photo_n = 0;
-  void Add(const Vec6d& J, double r, double w) {
-    H.noalias() += w * J * J.transpose();
-    g.noalias() += w * r * J;
-  }
-  void Merge(const Accum& o) {
-    H += o.H;
-    g += o.g;
-    icp_r2 += o.icp_r2;
-    photo_r2 += o.photo_r2;
-    icp_w += o.icp_w;
-    photo_w += o.photo_w;
-    icp_n += o.icp_n;
-    photo_n += o.photo_n;
-  }
-};
-
-double Huber(double r_scaled, double k) {
-  const double a = std::abs(r_scaled);
-  return a <= k ? 1.0 : k / a;
-}
-
-// Point-to-plane terms: live vertices (camera) against reference vertices/normals (world),
-// associated by projecting into the reference camera.
-void AddIcp(const ReferenceLevel& ref, const Pose& T_world_ref, const LiveLevel& live,
-            const Pose& T_world_live, const TrackerOptions& o, Accum& acc) {
-  const RigidTransform Tl = ToRigidTransform(T_world_live);
-  const RigidTransform Tr_inv = ToRigidTransform(T_world_ref.inverse());
-  const Eigen::Matrix3d R = T_world_live.rotation();
-  const float cos_max = std::cos(o.icp_max_angle_deg * 3.14159265f / 180.f);
-  const int w = live.cam.width, h = live.cam.height;
+// Sums a per-pixel term over a w x h grid on the CPU threads.
+template <typename Term>
+void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
 #pragma omp parallel
   {
-    Accum local;
+    GnSystem local;
 #pragma omp for schedule(static) nowait
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const Float3 v = live.vertex_c(x, y);
-        const Float3 nl = live.normal_c(x, y);
-        if (v.z <= 0 || Length(nl) == 0) continue;
-        const Float3 p = Tl.Apply(v);
-        const Float3 pr = Tr_inv.Apply(p);
-        if (pr.z <= 0) continue;
-        const Float2 u = ref.cam.Project(pr);
-        const int ux = int(std::lround(u.x)), uy = int(std::lround(u.y));
-        if (ux < 0 || uy < 0 || ux >= ref.cam.width || uy >= ref.cam.height) continue;
-        const Float3 m = ref.vertex_w(ux, uy), n = ref.normal_w(ux, uy);
-        if (Length(n) == 0) continue;
-        const Float3 d = p - m;
-        if (Length(d) > o.icp_max_dist_m) continue;
-        if (Dot(n, Tl.Rotate(nl)) < cos_max) continue;
-        const double r = Dot(n, d);
-        const Eigen::Vector3d nw(n.x, n.y, n.z);
-        const Eigen::Vector3d a = R.transpose() * nw;
-        const Eigen::Vector3d vv(v.x, v.y, v.z);
-        Vec6d J;
-        J.head<3>() = a;
-        J.tail<3>() = vv.cross(a);
-        const double s = 1.0 / o.icp_sigma_m;
-        const double wgt = Huber(r * s, o.huber_k);
-        local.Add(J * s, r * s, wgt);
-        local.icp_r2 += wgt * r * r;
-        local.icp_w += wgt;
-        ++local.icp_n;
-      }
-#pragma omp critical
-    acc.Merge(local);
-  }
-}
-
-// Photometric terms: reference pixels (world vertex, NR) warped into the live frame,
-// residual NR_ref - NR_live(u'), weighted by the live PCF.
-void AddPhoto(const ReferenceLevel& ref, const LiveLevel& live, const Pose& T_world_live,
-              const TrackerOptions& o, Accum& acc) {
-  const RigidTransform Tl_inv = ToRigidTransform(T_world_live.inverse());
-  const int w = ref.cam.width, h = ref.cam.height;
-  const PinholeCamera& c = live.cam;
-#pragma omp parallel
-  {
-    Accum local;
-#pragma omp for schedule(static) nowait
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const Float3 m = ref.vertex_w(x, y);
-        if (m.x == 0 && m.y == 0 && m.z == 0) continue;
-        const float i_ref = ref.intensity(x, y);
-        if (i_ref == 0) continue;  // no model radiance here
-        const Float3 q = Tl_inv.Apply(m);
-        if (q.z <= 0.1f) continue;
-        const Float2 u = c.Project(q);
-        float il, gx, gy, wl;
-        if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il)) continue;
-        if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0) continue;
-        imaging::SampleBilinear(live.grad_x, u.x, u.y, &gx);
-        imaging::SampleBilinear(live.grad_y, u.x, u.y, &gy);
-        const double r = double(i_ref) - il;
-        const double iz = 1.0 / q.z;
-        // d(pi)/dq times dq/dxi, with dq/dxi = [-I, [q]x] for T_live <- T_live exp(xi).
-        const double gu = gx * c.fx * iz, gv = gy * c.fy * iz;
-        const Eigen::Vector3d dI_dq(gu, gv, -(gu * q.x + gv * q.y) * iz);
-        const Eigen::Vector3d qq(q.x, q.y, q.z);
-        Vec6d J;
-        J.head<3>() = dI_dq;               // d r / d xi_v = -dI/dq * (-I)
-        J.tail<3>() = qq.cross(dI_dq);     // d r / d xi_w = -dI/dq [q]x, i.e. q x dI/dq
-        const double s = wl / o.photo_sigma;
-        const double wgt = Huber(r * s, o.huber_k);
-        local.Add(J * s, r * s, wgt);
-        local.photo_r2 += wgt * r * r;
-        local.photo_w += wgt;
-        ++local.photo_n;
-      }
+      for (int x = 0; x < w; ++x) term(x, y, local);
 #pragma omp critical
     acc.Merge(local);
   }
 }
 
 }  // namespace
+
+IcpArgs MakeIcpArgs(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
+                    const Pose& T_world_live, const TrackerOptions& o) {
+  IcpArgs a{};
+  a.live_vertex = live.vertex_c;
+  a.live_normal = live.normal_c;
+  a.ref_vertex = ref.vertex_w;
+  a.ref_normal = ref.normal_w;
+  a.ref_cam = ref.cam;
+  a.T_world_live = ToRigidTransform(T_world_live);
+  a.T_ref_world = ToRigidTransform(T_world_ref.inverse());
+  const Eigen::Matrix3d R = T_world_live.rotation();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) a.R_world_live[3 * i + j] = R(i, j);
+  a.cos_max_angle = std::cos(o.icp_max_angle_deg * 3.14159265f / 180.f);
+  a.max_dist = o.icp_max_dist_m;
+  a.inv_sigma = 1.f / o.icp_sigma_m;
+  a.huber_k = o.huber_k;
+  return a;
+}
+
+PhotoArgs MakePhotoArgs(const ReferenceView& ref, const LiveView& live, const Pose& T_world_live,
+                        const TrackerOptions& o) {
+  PhotoArgs a{};
+  a.ref_vertex = ref.vertex_w;
+  a.ref_intensity = ref.intensity;
+  a.live_intensity = live.intensity;
+  a.live_weight = live.weight;
+  a.live_gx = live.grad_x;
+  a.live_gy = live.grad_y;
+  a.live_cam = live.cam;
+  a.T_live_world = ToRigidTransform(T_world_live.inverse());
+  a.photo_sigma = o.photo_sigma;
+  a.huber_k = o.huber_k;
+  return a;
+}
+
+ReferenceView ReferenceLevel::view() const { return {cam, View(vertex_w), View(normal_w), View(intensity)}; }
+LiveView LiveLevel::view() const {
+  return {cam, View(vertex_c), View(normal_c), View(intensity), View(grad_x), View(grad_y), View(weight)};
+}
+
+GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
+                       const Pose& T_world_live, const TrackerOptions& o) {
+  GnSystem acc;
+  const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
+  const bool use_photo = o.kind != TrackerKind::kIcp;
+  if (use_icp) {
+    const IcpArgs a = MakeIcpArgs(ref, T_world_ref, live, T_world_live, o);
+    SumTerms(live.cam.width, live.cam.height, [&](int x, int y, GnSystem& s) { IcpTerm(a, x, y, s); }, acc);
+  }
+  if (use_photo) {
+    const PhotoArgs a = MakePhotoArgs(ref, live, T_world_live, o);
+    SumTerms(ref.cam.width, ref.cam.height, [&](int x, int y, GnSystem& s) { PhotoTerm(a, x, y, s); }, acc);
+  }
+  return acc;
+}
 
 Live MakeLive(const DepthImage& depth, const Image<float>& intensity, const Image<float>& weight,
               const PinholeCamera& cam, int levels) {
@@ -226,41 +177,53 @@ Reference MakeReference(const Image<Float3>& vertex_w, const Image<Float3>& norm
 
 TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
                   const TrackerOptions& o) {
+  const int levels = int(std::min(ref.levels.size(), live.levels.size()));
+  long live_valid = 0;
+  const LiveLevel& L0 = live.levels[0];
+  for (std::size_t i = 0; i < L0.vertex_c.size(); ++i) live_valid += L0.vertex_c[i].z > 0;
+  return Track(
+      [&](int l, const Pose& T) {
+        return AccumulateCpu(ref.levels[std::size_t(l)].view(), ref.T_world_camera,
+                             live.levels[std::size_t(l)].view(), T, o);
+      },
+      levels, live_valid, initial, o);
+}
+
+TrackResult Track(const Accumulator& accumulate, int available_levels, long live_valid,
+                  const Pose& initial, const TrackerOptions& o) {
   TrackResult res;
   Pose T = initial;
-  const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
-  const bool use_photo = o.kind != TrackerKind::kIcp;
-  const int levels = std::min<int>(o.levels, int(std::min(ref.levels.size(), live.levels.size())));
-  Mat6 H_last = Mat6::Zero();
-  Accum last;
+  const int levels = std::min(o.levels, available_levels);
+  GnSystem last;
   for (int l = levels - 1; l >= 0; --l) {
     const int iters = o.iterations[std::size_t(levels - 1 - l)];
     for (int it = 0; it < iters; ++it) {
-      Accum acc;
-      if (use_icp) AddIcp(ref.levels[std::size_t(l)], ref.T_world_camera, live.levels[std::size_t(l)], T, o, acc);
-      if (use_photo) AddPhoto(ref.levels[std::size_t(l)], live.levels[std::size_t(l)], T, o, acc);
-      if (acc.icp_n + acc.photo_n < 12) break;
-      const Mat6 Hd = acc.H + 1e-6 * Mat6::Identity() * acc.H.trace() / 6.0;
-      const Vec6d xi = Hd.ldlt().solve(-acc.g);
+      GnSystem acc = accumulate(l, T);
+      if (acc.icp_n() + acc.photo_n() < 12) break;
+      Mat6 H;
+      Vec6d g;
+      for (int i = 0, k = 0; i < 6; ++i) {
+        for (int j = i; j < 6; ++j, ++k) H(i, j) = H(j, i) = acc.v[k];
+        g(i) = acc.v[GnSystem::kH + i];
+      }
+      const Mat6 Hd = H + 1e-6 * Mat6::Identity() * H.trace() / 6.0;
+      const Vec6d xi = Hd.ldlt().solve(-g);
       if (!xi.allFinite()) break;
       T = se3::Orthonormalized(T * se3::Exp(Vec6(xi)));
       ++res.iterations;
-      if (l == 0) {
-        H_last = acc.H;
-        last = acc;
-      }
+      if (l == 0) last = acc;
       if (xi.head<3>().norm() < 1e-5 && xi.tail<3>().norm() < 1e-5) break;
     }
   }
   res.T_world_camera = T;
-  res.rms_icp_m = last.icp_w > 0 ? std::sqrt(last.icp_r2 / last.icp_w) : 0;
-  res.rms_photo = last.photo_w > 0 ? std::sqrt(last.photo_r2 / last.photo_w) : 0;
+  res.rms_icp_m = last.icp_w() > 0 ? std::sqrt(last.icp_r2() / last.icp_w()) : 0;
+  res.rms_photo = last.photo_w() > 0 ? std::sqrt(last.photo_r2() / last.photo_w()) : 0;
   // Health, at the finest level.
-  long live_valid = 0;
-  const LiveLevel& L0 = live.levels[0];
-  for (std::size_t i = 0; i < L0.vertex_c.size(); ++i) live_valid += L0.vertex_c[i].z > 0;
-  const long matched = std::max(last.icp_n, last.photo_n);
+  const long matched = long(std::max(last.icp_n(), last.photo_n()));
   res.inlier_share = live_valid > 0 ? double(matched) / double(live_valid) : 0;
+  Mat6 H_last;
+  for (int i = 0, k = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j, ++k) H_last(i, j) = H_last(j, i) = last.v[k];
   Eigen::SelfAdjointEigenSolver<Mat6> es(H_last);
   const double lo = es.eigenvalues().minCoeff(), hi = es.eigenvalues().maxCoeff();
   res.condition = lo > 0 ? hi / lo : 1e30;
@@ -287,23 +250,18 @@ ExposureEstimate EstimateExposureRatio(const Image<Float3>& model_vertex_w,
                                        const RadianceImage& live_radiance,
                                        const Image<float>& live_conf, const PinholeCamera& cam,
                                        const Pose& T_world_live) {
-  const RigidTransform Tinv = ToRigidTransform(T_world_live.inverse());
+  const ExposureArgs a{View(model_vertex_w), View(model_radiance), View(live_radiance),
+                       View(live_conf), cam, ToRigidTransform(T_world_live.inverse())};
   std::vector<std::pair<float, float>> samples;  // (log ratio, weight)
   for (int y = 0; y < model_vertex_w.height(); y += 2)
     for (int x = 0; x < model_vertex_w.width(); x += 2) {
-      const Float3 m = model_vertex_w(x, y);
-      const float lm = hdrf::Luminance(model_radiance(x, y));
-      if (!(lm > 0) || (m.x == 0 && m.y == 0 && m.z == 0)) continue;
-      const Float3 q = Tinv.Apply(m);
-      if (q.z <= 0.1f) continue;
-      const Float2 u = cam.Project(q);
-      const int ux = int(std::lround(u.x)), uy = int(std::lround(u.y));
-      if (ux < 0 || uy < 0 || ux >= cam.width || uy >= cam.height) continue;
-      const float wl = live_conf(ux, uy);
-      const float ll = hdrf::Luminance(live_radiance(ux, uy));
-      if (wl <= 0 || !(ll > 0)) continue;
-      samples.emplace_back(std::log(lm / ll), wl);
+      float lr, w;
+      if (ExposureSample(a, x, y, &lr, &w)) samples.emplace_back(lr, w);
     }
+  return WeightedMedianRatio(samples);
+}
+
+ExposureEstimate WeightedMedianRatio(std::vector<std::pair<float, float>>& samples) {
   ExposureEstimate e;
   e.samples = long(samples.size());
   if (samples.size() < 50) return e;

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
+#include "tracking/tracking_impl.h"
 
 namespace hdrf::tracking {
 
@@ -43,11 +45,24 @@ struct TrackerOptions {
   void Check() const;
 };
 
+// Views of one pyramid level, as the per-pixel terms see it (host or device memory).
+struct ReferenceView {
+  PinholeCamera cam;
+  ImageView<const Float3> vertex_w, normal_w;
+  ImageView<const float> intensity;
+};
+struct LiveView {
+  PinholeCamera cam;
+  ImageView<const Float3> vertex_c, normal_c;
+  ImageView<const float> intensity, grad_x, grad_y, weight;
+};
+
 // One pyramid level of what is tracked against.
 struct ReferenceLevel {
   PinholeCamera cam;
   Image<Float3> vertex_w, normal_w;  // world frame; zero = none
   Image<float> intensity;            // NR (or raw intensity for the baseline)
+  ReferenceView view() const;
 };
 struct Reference {
   std::vector<ReferenceLevel> levels;  // finest first
@@ -60,6 +75,7 @@ struct LiveLevel {
   Image<Float3> vertex_c, normal_c;  // camera frame
   Image<float> intensity, grad_x, grad_y;
   Image<float> weight;               // PCF confidence (1 for the baseline)
+  LiveView view() const;
 };
 struct Live {
   std::vector<LiveLevel> levels;  // finest first
@@ -86,6 +102,22 @@ struct TrackResult {
 TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
                   const TrackerOptions& o);
 
+// The Gauss-Newton loop itself, for any backend: `accumulate(level, T_world_live)` returns
+// the summed normal equations at that pyramid level (0 = finest) and pose; `live_valid` is
+// the number of live pixels with depth at the finest level (for the inlier share).
+using Accumulator = std::function<GnSystem(int level, const Pose& T_world_live)>;
+TrackResult Track(const Accumulator& accumulate, int levels, long live_valid, const Pose& initial,
+                  const TrackerOptions& o);
+
+// The per-pixel term arguments of one level and pose (shared by the CPU and CUDA sums), and
+// the CPU sum over a level.
+IcpArgs MakeIcpArgs(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
+                    const Pose& T_world_live, const TrackerOptions& o);
+PhotoArgs MakePhotoArgs(const ReferenceView& ref, const LiveView& live, const Pose& T_world_live,
+                        const TrackerOptions& o);
+GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
+                       const Pose& T_world_live, const TrackerOptions& o);
+
 // Exposure ratio t of the live frame against the model (model radiance = t * live
 // radiance): the confidence-weighted median over matched pixels of the luminance ratio,
 // leaving out saturated or black live pixels and pixels without model radiance.
@@ -99,5 +131,8 @@ ExposureEstimate EstimateExposureRatio(const Image<Float3>& model_vertex_w,
                                        const RadianceImage& live_radiance,
                                        const Image<float>& live_confidence,
                                        const PinholeCamera& cam, const Pose& T_world_live);
+// The confidence-weighted median of (log ratio, weight) samples (sorted in place); invalid
+// below 50 samples.
+ExposureEstimate WeightedMedianRatio(std::vector<std::pair<float, float>>& samples);
 
 }  // namespace hdrf::tracking

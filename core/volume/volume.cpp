@@ -58,106 +58,69 @@ Voxel* Volume::Allocate(int bx, int by, int bz) {
   return MutableBrick(slot);
 }
 
-namespace {
-// Voxel-centre grid coordinates of a world point.
-inline Float3 Grid(Float3 p, Float3 origin, float inv_vs) { return (p - origin) * inv_vs - Float3{0.5f, 0.5f, 0.5f}; }
-}  // namespace
-
-bool Volume::SampleTsdf(Float3 p, float* out) const {
-  // Trilinear over the observed corners, renormalised; undefined when the observed corners
-  // carry less than half of the interpolation weight (far from anything seen).
-  const Float3 g = Grid(p, origin_, 1.f / o_.voxel_m());
-  const int x = int(std::floor(g.x)), y = int(std::floor(g.y)), z = int(std::floor(g.z));
-  const float ax = g.x - x, ay = g.y - y, az = g.z - z;
-  float acc = 0, wsum = 0;
-  if ((x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7 && x >= 0 && y >= 0 && z >= 0 && x < n_ - 1 &&
-      y < n_ - 1 && z < n_ - 1) {
-    // Fast path: all eight corners in one brick.
-    const int b = index_[std::size_t(BrickIndex(x >> 3, y >> 3, z >> 3))];
-    if (b < 0) return false;
-    const Voxel* base = &pool_[std::size_t(b) * 512 + std::size_t(((z & 7) * 8 + (y & 7)) * 8 + (x & 7))];
-    for (int k = 0; k < 8; ++k) {
-      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const Voxel& v = base[dz * 64 + dy * 8 + dx];
-      if (v.w <= 0) continue;
-      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-      acc += w * v.tsdf;
-      wsum += w;
-    }
-  } else {
-    for (int k = 0; k < 8; ++k) {
-      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const Voxel* v = Get(x + dx, y + dy, z + dz);
-      if (!v || v->w <= 0) continue;
-      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-      acc += w * v->tsdf;
-      wsum += w;
-    }
-  }
-  if (wsum < 0.5f) return false;
-  *out = acc / wsum;
-  return true;
+VolumeView Volume::view() const {
+  VolumeView v;
+  v.index = index_.data();
+  v.coarse = coarse_.data();
+  v.pool = const_cast<Voxel*>(pool_.data());  // the view is read-only for const callers
+  v.n = n_;
+  v.nb = nb_;
+  v.nc = nc_;
+  v.origin = origin_;
+  v.voxel_m = o_.voxel_m();
+  v.size_m = o_.size_m;
+  v.trunc_m = o_.truncation_m();
+  return v;
 }
 
-bool Volume::SampleRadiance(Float3 p, Float3* rad, float* nr) const {
-  const Float3 g = Grid(p, origin_, 1.f / o_.voxel_m());
-  const int x = int(std::floor(g.x)), y = int(std::floor(g.y)), z = int(std::floor(g.z));
-  const float ax = g.x - x, ay = g.y - y, az = g.z - z;
-  Float3 r{0, 0, 0};
-  float n = 0, wsum = 0;
-  for (int k = 0; k < 8; ++k) {
-    const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-    const Voxel* v = Get(x + dx, y + dy, z + dz);
-    if (!v || v->wr <= 0) continue;
-    const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-    r += v->radiance * w;
-    n += v->nr * w;
-    wsum += w;
-  }
-  if (wsum < 1e-3f) return false;
-  *rad = r / wsum;
-  *nr = n / wsum;
-  return true;
+void Volume::Assign(std::vector<int> index, std::vector<Voxel> pool,
+                    std::vector<std::array<int, 3>> coords, bool full) {
+  if (index.size() != index_.size() || pool.size() != coords.size() * 512)
+    throw Error("volume copy: inconsistent sizes");
+  index_ = std::move(index);
+  pool_ = std::move(pool);
+  brick_coord_ = std::move(coords);
+  full_ = full;
+  std::fill(coarse_.begin(), coarse_.end(), 0);
+  for (const auto& c : brick_coord_)
+    coarse_[std::size_t(((c[2] >> 2) * nc_ + (c[1] >> 2)) * nc_ + (c[0] >> 2))] = 1;
 }
 
-bool Volume::Gradient(Float3 p, Float3* n) const {
-  const float h = o_.voxel_m();
-  float fx0, fx1, fy0, fy1, fz0, fz1;
-  if (!SampleTsdf(p - Float3{h, 0, 0}, &fx0) || !SampleTsdf(p + Float3{h, 0, 0}, &fx1) ||
-      !SampleTsdf(p - Float3{0, h, 0}, &fy0) || !SampleTsdf(p + Float3{0, h, 0}, &fy1) ||
-      !SampleTsdf(p - Float3{0, 0, h}, &fz0) || !SampleTsdf(p + Float3{0, 0, h}, &fz1))
-    return false;
-  const Float3 g{fx1 - fx0, fy1 - fy0, fz1 - fz0};
-  const float len = Length(g);
-  if (len < 1e-6f) return false;
-  *n = g / len;
-  return true;
+IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, Float3 origin, const PinholeCamera& cam,
+                                        const Pose& T_world_camera, float radiance_scale) {
+  IntegrateArgs a{};
+  a.radiance_scale = radiance_scale;
+  a.cam = cam;
+  a.T_camera_world = ToRigidTransform(T_world_camera.inverse());
+  a.origin = origin;
+  a.voxel_m = o.voxel_m();
+  a.trunc_m = o.truncation_m();
+  a.max_weight = o.max_weight;
+  a.max_radiance_weight = o.max_radiance_weight;
+  a.tau0 = o.tau0;
+  a.cos_tau1 = std::cos(o.tau1_deg * 3.14159265f / 180.f);
+  return a;
 }
 
 Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   IntegrateStats st;
-  const DepthImage& depth = *in.depth_m;
-  const PinholeCamera& cam = in.camera;
+  IntegrateArgs args = MakeIntegrateArgs(o_, origin_, in.camera, in.T_world_camera, in.radiance_scale);
+  args.depth = View(*in.depth_m);
+  args.normals = View(*in.normals);
+  if (in.radiance) {
+    args.radiance = View(*in.radiance);
+    args.nr = View(*in.nr);
+    args.confidence = View(*in.confidence);
+    args.max_confidence = View(*in.max_confidence);
+  }
   const RigidTransform T = ToRigidTransform(in.T_world_camera);
-  const RigidTransform Tinv = ToRigidTransform(in.T_world_camera.inverse());
-  const float vs = o_.voxel_m(), trunc = o_.truncation_m(), bs = vs * kBrick;
+  const DepthImage& depth = *in.depth_m;
   // 1. Bricks within the truncation band of every depth sample (every 2nd pixel).
   std::vector<std::uint8_t> visible(index_.size(), 0);
   for (int y = 0; y < depth.height(); y += 2)
-    for (int x = 0; x < depth.width(); x += 2) {
-      const float z = depth(x, y);
-      if (!(z > 0)) continue;
-      const Float3 pc = cam.BackProject(float(x), float(y), z);
-      const float len = Length(pc);
-      const Float3 dir = pc / len;
-      for (float d = len - trunc; d <= len + trunc; d += 0.5f * bs) {
-        const Float3 pw = T.Apply(dir * d);
-        const Float3 g = (pw - origin_) / bs;
-        const int bx = int(std::floor(g.x)), by = int(std::floor(g.y)), bz = int(std::floor(g.z));
-        if (bx < 0 || by < 0 || bz < 0 || bx >= nb_ || by >= nb_ || bz >= nb_) continue;
-        visible[std::size_t(BrickIndex(bx, by, bz))] = 1;
-      }
-    }
+    for (int x = 0; x < depth.width(); x += 2)
+      ForBricksAlongRay(args, T, nb_, x, y,
+                        [&](int bx, int by, int bz) { visible[std::size_t(BrickIndex(bx, by, bz))] = 1; });
   std::vector<int> todo;
   for (int bz = 0; bz < nb_; ++bz)
     for (int by = 0; by < nb_; ++by)
@@ -171,7 +134,6 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
       }
   st.visible_bricks = todo.size();
   // 2. Update the voxels of those bricks.
-  const float cos_tau1 = std::cos(o_.tau1_deg * 3.14159265f / 180.f);
   std::size_t updated = 0, rad_updates = 0;
 #pragma omp parallel for schedule(dynamic, 8) reduction(+ : updated, rad_updates)
   for (long k = 0; k < long(todo.size()); ++k) {
@@ -179,37 +141,9 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
     const auto bc = brick_coord_[std::size_t(b)];
     Voxel* vox = MutableBrick(b);
     for (int i = 0; i < 512; ++i) {
-      const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
-      const Float3 pw = origin_ + Float3{(bc[0] * 8 + lx + 0.5f) * vs, (bc[1] * 8 + ly + 0.5f) * vs,
-                                         (bc[2] * 8 + lz + 0.5f) * vs};
-      const Float3 pc = Tinv.Apply(pw);
-      if (pc.z <= 0.05f) continue;
-      const Float2 px = cam.Project(pc);
-      const int u = int(std::lround(px.x)), v = int(std::lround(px.y));
-      if (u < 0 || v < 0 || u >= cam.width || v >= cam.height) continue;
-      const float zd = depth(u, v);
-      if (!(zd > 0)) continue;
-      const float sdf = zd - pc.z;
-      if (sdf < -trunc) continue;
-      const float f = std::min(1.f, sdf / trunc);
-      const Float3 ray = Normalized(pc);
-      const Float3 nrm = (*in.normals)(u, v);
-      const float cosv = std::abs(Dot(nrm, ray));
-      const float wf = Length(nrm) > 0 ? std::max(cosv, 0.05f) : 0.05f;
-      Voxel& vx = vox[i];
-      vx.tsdf = (vx.w * vx.tsdf + wf * f) / (vx.w + wf);
-      vx.w = std::min(vx.w + wf, o_.max_weight);
-      ++updated;
-      if (std::abs(sdf) < trunc && in.radiance && (*in.max_confidence)(u, v) > o_.tau0 &&
-          cosv >= cos_tau1) {
-        const float wr = (*in.confidence)(u, v);
-        if (wr > 0) {
-          vx.radiance = (vx.radiance * vx.wr + (*in.radiance)(u, v) * wr) / (vx.wr + wr);
-          vx.nr = (vx.nr * vx.wr + (*in.nr)(u, v) * wr) / (vx.wr + wr);
-          vx.wr = std::min(vx.wr + wr, o_.max_radiance_weight);
-          ++rad_updates;
-        }
-      }
+      const int done = IntegrateVoxel(args, bc[0], bc[1], bc[2], i, vox[i]);
+      updated += done & 1;
+      rad_updates += (done >> 1) & 1;
     }
   }
   st.voxels_updated = updated;
@@ -221,93 +155,22 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, fl
                                   float far_m) const {
   Rendering r;
   const int w = cam.width, h = cam.height;
-  r.vertex = Image<Float3>(w, h, Float3{0, 0, 0});
-  r.normal = Image<Float3>(w, h, Float3{0, 0, 0});
-  r.radiance = RadianceImage(w, h, Float3{0, 0, 0});
-  r.nr = Image<float>(w, h, 0.f);
-  r.depth = DepthImage(w, h, 0.f);
-  const RigidTransform T = ToRigidTransform(T_wc);
-  const float vs = o_.voxel_m(), trunc = o_.truncation_m(), bs = vs * kBrick;
+  r.vertex = Image<Float3>(w, h);
+  r.normal = Image<Float3>(w, h);
+  r.radiance = RadianceImage(w, h);
+  r.nr = Image<float>(w, h);
+  r.depth = DepthImage(w, h);
+  const RaycastArgs a{cam, ToRigidTransform(T_wc), near_m, far_m};
+  const VolumeView V = view();
 #pragma omp parallel for schedule(dynamic, 4)
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const Float3 dc = Normalized(cam.BackProject(float(x), float(y), 1.f));
-      const Float3 dw = T.Rotate(dc), o = T.t;
-      // Clip the ray to the volume's cube.
-      float t0 = near_m, t1 = far_m;
-      {
-        const float ov[3] = {o.x, o.y, o.z}, dv[3] = {dw.x, dw.y, dw.z};
-        const float lo[3] = {origin_.x, origin_.y, origin_.z};
-        for (int a = 0; a < 3; ++a) {
-          if (std::abs(dv[a]) < 1e-9f) continue;
-          float ta = (lo[a] - ov[a]) / dv[a], tb = (lo[a] + o_.size_m - ov[a]) / dv[a];
-          if (ta > tb) std::swap(ta, tb);
-          t0 = std::max(t0, ta);
-          t1 = std::min(t1, tb);
-        }
-      }
-      const float inv_d[3] = {std::abs(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f,
-                              std::abs(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
-                              std::abs(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
-      // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
-      auto cell_exit = [&](const Float3& p, float cell, float t) {
-        const float gp[3] = {(p.x - origin_.x) / cell, (p.y - origin_.y) / cell, (p.z - origin_.z) / cell};
-        float te = t1;
-        for (int a = 0; a < 3; ++a) {
-          if (inv_d[a] == 1e9f) continue;
-          const float c = std::floor(gp[a]);
-          const float edge = inv_d[a] > 0 ? c + 1.f : c;
-          te = std::min(te, t + (edge - gp[a]) * cell * inv_d[a]);
-        }
-        return te;
-      };
-      float t = t0, prev_f = 1, prev_t = -1;
-      bool prev_valid = false;
-      while (t < t1) {
-        const Float3 p = o + dw * t;
-        const Float3 g = (p - origin_) / bs;
-        const int bx = int(std::floor(g.x)), by = int(std::floor(g.y)), bz = int(std::floor(g.z));
-        const int cx = bx >> 2, cy = by >> 2, cz = bz >> 2;
-        if (bx < 0 || by < 0 || bz < 0 || bx >= nb_ || by >= nb_ || bz >= nb_) break;
-        if (!coarse_[std::size_t((cz * nc_ + cy) * nc_ + cx)]) {
-          t = std::max(t + 0.1f * vs, cell_exit(p, 4 * bs, t) + 0.01f * vs);
-          prev_valid = false;
-          continue;
-        }
-        if (!BrickAllocated(bx, by, bz)) {
-          t = std::max(t + 0.1f * vs, cell_exit(p, bs, t) + 0.01f * vs);
-          prev_valid = false;
-          continue;
-        }
-        float f;
-        if (!SampleTsdf(p, &f)) {
-          t += 0.5f * trunc;  // unobserved voxels inside an allocated brick
-          prev_valid = false;
-          continue;
-        }
-        if (prev_valid && prev_f > 0 && f <= 0) {
-          const float ts = prev_t + (t - prev_t) * prev_f / (prev_f - f);
-          const Float3 ps = o + dw * ts;
-          Float3 n;
-          if (Gradient(ps, &n)) {
-            r.vertex(x, y) = ps;
-            r.normal(x, y) = n;
-            r.depth(x, y) = ts * dc.z;
-            Float3 rad;
-            float nrv;
-            if (SampleRadiance(ps, &rad, &nrv)) {
-              r.radiance(x, y) = rad;
-              r.nr(x, y) = nrv;
-            }
-          }
-          break;
-        }
-        if (prev_valid && prev_f < 0 && f > 0) break;  // back face: seen from behind
-        prev_f = f;
-        prev_t = t;
-        prev_valid = true;
-        t += std::max(0.8f * vs, 0.8f * f * trunc);
-      }
+      const RayHit hit = RaycastPixel(V, a, x, y);
+      r.vertex(x, y) = hit.vertex;
+      r.normal(x, y) = hit.normal;
+      r.radiance(x, y) = hit.radiance;
+      r.nr(x, y) = hit.nr;
+      r.depth(x, y) = hit.depth;
     }
   return r;
 }

@@ -12,6 +12,7 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
+#include "volume/volume_impl.h"
 
 namespace hdrf::volume {
 
@@ -29,16 +30,6 @@ struct VolumeOptions {
   float truncation_m() const { return truncation_voxels * voxel_m(); }
 };
 
-struct Voxel {
-  float tsdf = 1;                 // signed distance / truncation, in [-1, 1]
-  float w = 0;                    // TSDF weight
-  Float3 radiance{0, 0, 0};       // HDR radiance, model units
-  float nr = 0;                   // normalized radiance
-  float wr = 0;                   // radiance weight
-};
-
-inline constexpr int kBrick = 8;
-
 class Volume {
  public:
   explicit Volume(const VolumeOptions& o);
@@ -51,32 +42,31 @@ class Volume {
   bool full() const { return full_; }  // allocation stopped at max_memory_mb
 
   // Voxel at integer coordinates, or nullptr where unallocated / outside.
-  const Voxel* Get(int x, int y, int z) const {
-    if (x < 0 || y < 0 || z < 0 || x >= n_ || y >= n_ || z >= n_) return nullptr;
-    const int b = index_[BrickIndex(x >> 3, y >> 3, z >> 3)];
-    return b < 0 ? nullptr : &pool_[std::size_t(b) * 512 + std::size_t(((z & 7) * 8 + (y & 7)) * 8 + (x & 7))];
-  }
-  bool BrickAllocated(int bx, int by, int bz) const {
-    return bx >= 0 && by >= 0 && bz >= 0 && bx < nb_ && by < nb_ && bz < nb_ &&
-           index_[BrickIndex(bx, by, bz)] >= 0;
-  }
-  // Trilinear TSDF at a world point (voxel-centre grid); false where any corner is unseen.
-  bool SampleTsdf(Float3 p, float* tsdf) const;
+  const Voxel* Get(int x, int y, int z) const { return view().Get(x, y, z); }
+  bool BrickAllocated(int bx, int by, int bz) const { return view().BrickAllocated(bx, by, bz); }
+  // Trilinear TSDF at a world point (voxel-centre grid); false where the observed corners
+  // carry less than half of the weight.
+  bool SampleTsdf(Float3 p, float* tsdf) const { return view().SampleTsdf(p, tsdf); }
   // Trilinear radiance and NR over corners with radiance weight; false if none has any.
-  bool SampleRadiance(Float3 p, Float3* radiance, float* nr) const;
+  bool SampleRadiance(Float3 p, Float3* radiance, float* nr) const {
+    return view().SampleRadiance(p, radiance, nr);
+  }
   // Normal from the TSDF gradient; false where undefined.
-  bool Gradient(Float3 p, Float3* n) const;
+  bool Gradient(Float3 p, Float3* n) const { return view().Gradient(p, n); }
+  // The arrays and geometry for the per-element functions of volume_impl.h.
+  VolumeView view() const;
 
   // Integration of one frame (see integrate.cpp).
   struct FrameInput {
     const DepthImage* depth_m;
     const Image<Float3>* normals;       // camera frame, for w_F = |n.v|
-    const RadianceImage* radiance;      // already scaled to model units (exposure compensated)
+    const RadianceImage* radiance;      // live radiance; times radiance_scale = model units
     const Image<float>* nr;             // normalized radiance
     const Image<float>* confidence;     // mean PCF -> w_R
     const Image<float>* max_confidence; // largest channel PCF -> tau0 gate
     PinholeCamera camera;
     Pose T_world_camera;
+    float radiance_scale = 1;           // exposure compensation (model / live)
   };
   struct IntegrateStats {
     std::size_t visible_bricks = 0, new_bricks = 0, voxels_updated = 0, radiance_updates = 0;
@@ -96,6 +86,19 @@ class Volume {
 
   // Voxel coordinates of allocated bricks (for meshing).
   const std::vector<std::array<int, 3>>& bricks() const { return brick_coord_; }
+
+  // The raw state, for a copy made elsewhere (the CUDA volume's host mirror): the brick
+  // index (nb^3), the voxel pool (512 per brick, in slot order), each slot's brick
+  // coordinates, and whether allocation had stopped at the memory limit.
+  const std::vector<int>& brick_index() const { return index_; }
+  const std::vector<Voxel>& pool() const { return pool_; }
+  void Assign(std::vector<int> index, std::vector<Voxel> pool,
+              std::vector<std::array<int, 3>> brick_coords, bool full);
+  // Integration and ray casting argument blocks shared with the CUDA backend.
+  // (the caller sets the image views).
+  static IntegrateArgs MakeIntegrateArgs(const VolumeOptions& o, Float3 origin, const PinholeCamera& cam,
+                                         const Pose& T_world_camera, float radiance_scale);
+  std::size_t max_bricks() const { return max_bricks_; }
 
  private:
   int BrickIndex(int bx, int by, int bz) const { return (bz * nb_ + by) * nb_ + bx; }

@@ -1,0 +1,157 @@
+// Per-pixel Gauss-Newton terms of the tracker, shared by the CPU loops (tracking.cpp) and
+// the CUDA reductions (pipeline/cuda_engine.cu): the same residual, Jacobian and robust
+// weight on both backends; only the order of the final sums differs.
+#pragma once
+
+#include "common/camera.h"
+#include "common/host_device.h"
+#include "common/image_view.h"
+#include "common/vec.h"
+#include "imaging/imaging_impl.h"
+
+namespace hdrf::tracking {
+
+// The normal equations of one Gauss-Newton step and the health sums, as plain doubles so
+// that they can be reduced on a GPU: H (upper triangle, row-major), g, then the robust
+// residual sums and counts of the ICP and photometric terms.
+struct GnSystem {
+  static constexpr int kH = 21, kG = 6, kSize = 33;
+  double v[kSize] = {};
+  HDRF_HD double& icp_r2() { return v[27]; }
+  HDRF_HD double& photo_r2() { return v[28]; }
+  HDRF_HD double& icp_w() { return v[29]; }
+  HDRF_HD double& photo_w() { return v[30]; }
+  HDRF_HD double& icp_n() { return v[31]; }
+  HDRF_HD double& photo_n() { return v[32]; }
+  // Adds w * J J^T and w * r * J.
+  HDRF_HD void Add(const double J[6], double r, double w) {
+    int k = 0;
+    for (int i = 0; i < 6; ++i) {
+      const double wj = w * J[i];
+      for (int j = i; j < 6; ++j) v[k++] += wj * J[j];
+      v[kH + i] += w * r * J[i];
+    }
+  }
+  HDRF_HD void Merge(const GnSystem& o) {
+    for (int i = 0; i < kSize; ++i) v[i] += o.v[i];
+  }
+};
+
+HDRF_HD double HuberWeight(double r_scaled, double k) {
+  const double a = r_scaled < 0 ? -r_scaled : r_scaled;
+  return a <= k ? 1.0 : k / a;
+}
+
+// Point-to-plane ICP: live vertex (camera frame) against the reference vertex and normal
+// (world frame) found by projecting into the reference camera.
+struct IcpArgs {
+  ImageView<const Float3> live_vertex, live_normal;  // camera frame
+  ImageView<const Float3> ref_vertex, ref_normal;    // world frame; zero = none
+  PinholeCamera ref_cam;
+  RigidTransform T_world_live, T_ref_world;
+  double R_world_live[9];  // rotation of the live pose, row-major, double
+  float cos_max_angle, max_dist, inv_sigma, huber_k;
+};
+HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
+  const Float3 v = a.live_vertex(x, y);
+  const Float3 nl = a.live_normal(x, y);
+  if (v.z <= 0.f || Length(nl) == 0.f) return false;
+  const Float3 p = a.T_world_live.Apply(v);
+  const Float3 pr = a.T_ref_world.Apply(p);
+  if (pr.z <= 0.f) return false;
+  const Float2 u = a.ref_cam.Project(pr);
+  const int ux = int(lroundf(u.x)), uy = int(lroundf(u.y));
+  if (ux < 0 || uy < 0 || ux >= a.ref_cam.width || uy >= a.ref_cam.height) return false;
+  const Float3 m = a.ref_vertex(ux, uy), n = a.ref_normal(ux, uy);
+  if (Length(n) == 0.f) return false;
+  const Float3 d = p - m;
+  if (Length(d) > a.max_dist) return false;
+  if (Dot(n, a.T_world_live.Rotate(nl)) < a.cos_max_angle) return false;
+  const double r = Dot(n, d);
+  const double* R = a.R_world_live;
+  const double nx = n.x, ny = n.y, nz = n.z;
+  // a = R^T n; J = [a, v x a] (derivative of the residual w.r.t. the right-multiplied twist).
+  const double ax = R[0] * nx + R[3] * ny + R[6] * nz;
+  const double ay = R[1] * nx + R[4] * ny + R[7] * nz;
+  const double az = R[2] * nx + R[5] * ny + R[8] * nz;
+  const double vx = v.x, vy = v.y, vz = v.z;
+  const double s = a.inv_sigma;
+  const double J[6] = {ax * s, ay * s, az * s, (vy * az - vz * ay) * s, (vz * ax - vx * az) * s,
+                       (vx * ay - vy * ax) * s};
+  const double wgt = HuberWeight(r * s, a.huber_k);
+  acc.Add(J, r * s, wgt);
+  acc.icp_r2() += wgt * r * r;
+  acc.icp_w() += wgt;
+  acc.icp_n() += 1;
+  return true;
+}
+
+// Photometric: reference pixel (world vertex, NR) warped into the live frame; residual
+// NR_ref - NR_live(u'), scaled by the live PCF.
+struct PhotoArgs {
+  ImageView<const Float3> ref_vertex;  // world frame; zero = none
+  ImageView<const float> ref_intensity;
+  ImageView<const float> live_intensity, live_weight, live_gx, live_gy;
+  PinholeCamera live_cam;
+  RigidTransform T_live_world;
+  float photo_sigma, huber_k;
+};
+HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, GnSystem& acc) {
+  const Float3 m = a.ref_vertex(x, y);
+  if (m.x == 0.f && m.y == 0.f && m.z == 0.f) return false;
+  const float i_ref = a.ref_intensity(x, y);
+  if (i_ref == 0.f) return false;  // no model radiance here
+  const Float3 q = a.T_live_world.Apply(m);
+  if (q.z <= 0.1f) return false;
+  const PinholeCamera& c = a.live_cam;
+  const Float2 u = c.Project(q);
+  float il, gx = 0.f, gy = 0.f, wl;
+  if (!imaging::SampleBilinear(a.live_intensity, u.x, u.y, &il)) return false;
+  if (!imaging::SampleBilinear(a.live_weight, u.x, u.y, &wl) || wl <= 0.f) return false;
+  imaging::SampleBilinear(a.live_gx, u.x, u.y, &gx);
+  imaging::SampleBilinear(a.live_gy, u.x, u.y, &gy);
+  const double r = double(i_ref) - double(il);
+  const double iz = 1.0 / double(q.z);
+  // d(pi)/dq times dq/dxi, with dq/dxi = [-I, [q]x] for T_live <- T_live exp(xi).
+  const double gu = double(gx * c.fx) * iz, gv = double(gy * c.fy) * iz;
+  const double qx = q.x, qy = q.y, qz = q.z;
+  const double dz = -(gu * qx + gv * qy) * iz;
+  const double s = double(wl / a.photo_sigma);
+  const double J[6] = {gu * s, gv * s, dz * s, (qy * dz - qz * gv) * s, (qz * gu - qx * dz) * s,
+                       (qx * gv - qy * gu) * s};
+  const double wgt = HuberWeight(r * s, a.huber_k);
+  acc.Add(J, r * s, wgt);
+  acc.photo_r2() += wgt * r * r;
+  acc.photo_w() += wgt;
+  acc.photo_n() += 1;
+  return true;
+}
+
+// One sample of the exposure-ratio estimate at model pixel (x, y): log(model / live)
+// luminance and the live confidence as weight; false where there is no usable pair.
+struct ExposureArgs {
+  ImageView<const Float3> model_vertex;    // world frame
+  ImageView<const Float3> model_radiance;
+  ImageView<const Float3> live_radiance;
+  ImageView<const float> live_confidence;
+  PinholeCamera cam;
+  RigidTransform T_live_world;
+};
+HDRF_HD bool ExposureSample(const ExposureArgs& a, int x, int y, float* log_ratio, float* weight) {
+  const Float3 m = a.model_vertex(x, y);
+  const float lm = Luminance(a.model_radiance(x, y));
+  if (!(lm > 0.f) || (m.x == 0.f && m.y == 0.f && m.z == 0.f)) return false;
+  const Float3 q = a.T_live_world.Apply(m);
+  if (q.z <= 0.1f) return false;
+  const Float2 u = a.cam.Project(q);
+  const int ux = int(lroundf(u.x)), uy = int(lroundf(u.y));
+  if (ux < 0 || uy < 0 || ux >= a.cam.width || uy >= a.cam.height) return false;
+  const float wl = a.live_confidence(ux, uy);
+  const float ll = Luminance(a.live_radiance(ux, uy));
+  if (wl <= 0.f || !(ll > 0.f)) return false;
+  *log_ratio = logf(lm / ll);
+  *weight = wl;
+  return true;
+}
+
+}  // namespace hdrf::tracking
