@@ -25,10 +25,15 @@ ctest --preset core-gpu -j 4 2>&1 | tee "$out/ctest_all.txt" | tail -n 15
 all=${PIPESTATUS[0]}
 ctest --preset core-gpu -L gpu -V 2>&1 | tee "$out/ctest_gpu.txt" | grep -E "GPU:|parity|PASSED|FAILED|SKIPPED|OK \]" 
 gpu=${PIPESTATUS[0]}
+bench=0
+if [ "${HDRF_GPU_BENCH:-1}" = 1 ]; then
+  build-gpu/app/bench/hdrfusion-bench --frames "${HDRF_BENCH_FRAMES:-100}" --device both 2>&1 | tee "$out/bench.txt"
+  bench=${PIPESTATUS[0]}
+fi
 set -e
+echo "gpu_check: all tests rc=$all, gpu tests rc=$gpu, bench rc=$bench"
 if grep -q "\[  SKIPPED \]" "$out/ctest_gpu.txt"; then
   echo "gpu_check: a gpu test was SKIPPED: no usable GPU here" >&2
   exit 3
 fi
-echo "gpu_check: all tests rc=$all, gpu tests rc=$gpu"
-[ "$all" -eq 0 ] && [ "$gpu" -eq 0 ]
+[ "$all" -eq 0 ] && [ "$gpu" -eq 0 ] && [ "$bench" -eq 0 ]

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/camera.h"
 #include "common/image.h"
@@ -24,6 +25,19 @@ struct BackendSetup {
   const float* pcf;      // 3 x 256 PCF of the chosen variant
 };
 
+// Host copies of a frame's images and of the last ray cast: what the studio's views show
+// and what the backend parity tests compare.
+struct FrameImages {
+  RadianceImage radiance;
+  Image<float> confidence, max_confidence, nr;
+  DepthImage depth;                        // filtered
+  std::vector<Image<Float3>> live_vertex, live_normal;  // per pyramid level, finest first
+  std::vector<Image<float>> live_intensity, live_weight, live_grad_x;
+  std::vector<Image<Float3>> ref_vertex, ref_normal;
+  std::vector<Image<float>> ref_intensity;
+  volume::Volume::Rendering render;
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -41,6 +55,7 @@ class Backend {
   // 5. Fuses the live frame at a pose, radiance scaled by `ratio`; allocated bricks after.
   virtual void Integrate(const Pose& T_world_camera, float ratio) = 0;
   virtual std::size_t AllocatedBricks() = 0;
+  virtual std::size_t LastVisibleBricks() = 0;  // bricks updated by the last Integrate
   virtual std::size_t VolumeBytes() = 0;
   // 6. Ray casts the model (kept as the last rendering), and makes the tracking reference
   // from it or from the live frame at a pose.
@@ -53,8 +68,7 @@ class Backend {
   // Host copies for reports, tests and export.
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;
   virtual const volume::Volume& HostVolume() = 0;
-  virtual RadianceImage LiveRadiance() = 0;
-  virtual Image<float> LiveNr() = 0;
+  virtual FrameImages Download() = 0;
 };
 
 std::unique_ptr<Backend> MakeCpuBackend(const BackendSetup& setup);

@@ -124,6 +124,11 @@ class CudaBackend final : public Backend {
   tracking::ExposureEstimate EstimateExposure(const Pose& T_world_live) override;
   void Integrate(const Pose& T_world_camera, float ratio) override;
   std::size_t AllocatedBricks() override { return allocated_; }
+  std::size_t LastVisibleBricks() override {
+    int n = 0;
+    HDRF_CUDA_CHECK(cudaMemcpy(&n, counts_.data() + 1, sizeof(int), cudaMemcpyDeviceToHost));
+    return std::size_t(n);
+  }
   std::size_t VolumeBytes() override {
     return index_.size() * sizeof(int) + std::size_t(allocated_) * 512 * sizeof(volume::Voxel);
   }
@@ -133,8 +138,7 @@ class CudaBackend final : public Backend {
   void Synchronize() override { cuda::Synchronize(); }
   volume::Volume::Rendering Render(const Pose& T_world_camera) override;
   const volume::Volume& HostVolume() override;
-  RadianceImage LiveRadiance() override { return radiance_.ToHost(); }
-  Image<float> LiveNr() override { return nr_.ToHost(); }
+  FrameImages Download() override;
 
   // Helpers (public: CUDA extended lambdas may not live in private members).
   void BuildReferencePyramid();
@@ -240,6 +244,7 @@ CudaBackend::CudaBackend(const BackendSetup& s)
   coarse_ = DeviceBuffer<std::uint8_t>(std::size_t(nc) * nc * nc);
   HDRF_CUDA_CHECK(cudaMemset(coarse_.data(), 0, coarse_.size()));
   counts_ = DeviceBuffer<int>(2);
+  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, 2 * sizeof(int)));
   // Scratch for the scans and the sort, sized for the larger of the two.
   std::size_t scan_bytes = 0, sort_bytes = 0, cum_bytes = 0;
   HDRF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, scan_bytes, flags_.data(), scan_.data(), int(nb3)));
@@ -585,6 +590,30 @@ volume::Volume::Rendering CudaBackend::Render(const Pose& T) {
   r.nr = tmp.nr.ToHost();
   r.depth = tmp.depth.ToHost();
   return r;
+}
+
+FrameImages CudaBackend::Download() {
+  FrameImages f;
+  f.radiance = radiance_.ToHost();
+  f.confidence = conf_.ToHost();
+  f.max_confidence = maxconf_.ToHost();
+  f.nr = nr_.ToHost();
+  f.depth = depth_.ToHost();
+  for (const auto& L : live_) {
+    f.live_vertex.push_back(L.vertex.ToHost());
+    f.live_normal.push_back(L.normal.ToHost());
+    f.live_intensity.push_back(L.intensity.ToHost());
+    f.live_weight.push_back(L.weight.ToHost());
+    f.live_grad_x.push_back(L.gx.ToHost());
+  }
+  for (const auto& L : ref_) {
+    f.ref_vertex.push_back(L.vertex.ToHost());
+    f.ref_normal.push_back(L.normal.ToHost());
+    f.ref_intensity.push_back(L.intensity.ToHost());
+  }
+  f.render = {render_.vertex.ToHost(), render_.normal.ToHost(), render_.radiance.ToHost(), render_.nr.ToHost(),
+              render_.depth.ToHost()};
+  return f;
 }
 
 const volume::Volume& CudaBackend::HostVolume() {

@@ -80,8 +80,9 @@ class CpuBackend final : public Backend {
     // The finest tracking level already holds this frame's normals (same filtered depth).
     volume::Volume::FrameInput fi{&depth_, &live_.levels[0].normal_c, &radiance_, &nr_, &conf_, &maxconf_,
                                   cam_, T, ratio};
-    volume_.Integrate(fi);
+    last_visible_ = volume_.Integrate(fi).visible_bricks;
   }
+  std::size_t LastVisibleBricks() override { return last_visible_; }
   std::size_t AllocatedBricks() override { return volume_.allocated_bricks(); }
   std::size_t VolumeBytes() override { return volume_.bytes(); }
 
@@ -106,8 +107,29 @@ class CpuBackend final : public Backend {
 
   volume::Volume::Rendering Render(const Pose& T) override { return volume_.Raycast(cam_, T); }
   const volume::Volume& HostVolume() override { return volume_; }
-  RadianceImage LiveRadiance() override { return radiance_.Clone(); }
-  Image<float> LiveNr() override { return nr_.Clone(); }
+  FrameImages Download() override {
+    FrameImages f;
+    f.radiance = radiance_.Clone();
+    f.confidence = conf_.Clone();
+    f.max_confidence = maxconf_.Clone();
+    f.nr = nr_.Clone();
+    f.depth = depth_.Clone();
+    for (const auto& L : live_.levels) {
+      f.live_vertex.push_back(L.vertex_c.Clone());
+      f.live_normal.push_back(L.normal_c.Clone());
+      f.live_intensity.push_back(L.intensity.Clone());
+      f.live_weight.push_back(L.weight.Clone());
+      f.live_grad_x.push_back(L.grad_x.Clone());
+    }
+    for (const auto& L : reference_.levels) {
+      f.ref_vertex.push_back(L.vertex_w.Clone());
+      f.ref_normal.push_back(L.normal_w.Clone());
+      f.ref_intensity.push_back(L.intensity.Clone());
+    }
+    f.render = {render_.vertex.Clone(), render_.normal.Clone(), render_.radiance.Clone(), render_.nr.Clone(),
+                render_.depth.Clone()};
+    return f;
+  }
 
  private:
   const PipelineOptions& o_;
@@ -121,6 +143,7 @@ class CpuBackend final : public Backend {
   tracking::Live live_;
   tracking::Reference reference_;
   volume::Volume::Rendering render_;
+  std::size_t last_visible_ = 0;
 };
 }  // namespace
 

@@ -1,0 +1,95 @@
+#include "pipeline/bench.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "pipeline/backend.h"
+#include "pipeline/frame_source.h"
+
+namespace hdrf::pipeline {
+
+std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
+                                           const std::function<void(const EngineBenchRow&)>& progress) {
+  std::vector<EngineBenchRow> rows;
+  constexpr int kWarmup = 5;
+  for (const BenchCase& c : o.cases) {
+    sim::SimOptions so;
+    so.width = c.width;
+    so.height = c.height;
+    so.frames = o.frames + kWarmup;
+    so.ae.mode = sim::AeMode::kFlicker;
+    SyntheticFrameSource src(so);
+    std::vector<FrameInput> frames(static_cast<std::size_t>(src.size()));
+    for (auto& f : frames) src.Next(f);  // rendered first, not timed
+    const Pose T0inv = frames[0].T_world_camera_true->inverse();
+    for (Device dev : o.devices) {
+      if (dev == Device::kCuda && !CudaAvailable()) continue;
+      const std::size_t mem0 = dev == Device::kCuda ? CudaMemoryUsed() : 0;
+      PipelineOptions po;
+      po.volume.resolution = c.resolution;
+      po.tracker.kind = o.tracker;
+      po.device = dev;
+      EngineBenchRow row;
+      row.device = dev;
+      row.c = c;
+      double se = 0, visible = 0;
+      {
+        Pipeline pipe(po, src.sensor().camera, src.sensor());
+        std::chrono::steady_clock::time_point t0;
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+          if (int(i) == kWarmup) t0 = std::chrono::steady_clock::now();
+          const FrameReport r = pipe.Process(frames[i]);
+          const Pose truth = T0inv * *frames[i].T_world_camera_true;
+          se += (truth.translation() - r.T_world_camera.translation()).squaredNorm();
+          row.lost += r.tracking.lost;
+          if (int(i) < kWarmup) continue;
+          visible += double(pipe.backend().LastVisibleBricks());
+          row.ms.convert += r.ms.convert;
+          row.ms.normalize += r.ms.normalize;
+          row.ms.track += r.ms.track;
+          row.ms.compensate += r.ms.compensate;
+          row.ms.integrate += r.ms.integrate;
+          row.ms.raycast += r.ms.raycast;
+        }
+        const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double n = o.frames;
+        row.ms = {row.ms.convert / n, row.ms.normalize / n, row.ms.track / n,
+                  row.ms.compensate / n, row.ms.integrate / n, row.ms.raycast / n};
+        row.wall_ms = wall / n;
+        row.fps = 1000.0 / row.wall_ms;
+        row.visible_bricks = visible / n;
+        row.bricks = pipe.backend().AllocatedBricks();
+        const double bytes = double(pipe.volume_bytes());
+        row.volume_mib = bytes / (1024.0 * 1024.0);
+        row.bytes_per_voxel = row.bricks ? bytes / (double(row.bricks) * 512.0) : 0;
+        if (dev == Device::kCuda) row.gpu_mib = double(CudaMemoryUsed() - mem0) / (1024.0 * 1024.0);
+        row.ate_cm = 100.0 * std::sqrt(se / double(frames.size()));
+      }
+      if (progress) progress(row);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows) {
+  std::string out =
+      "| device | size | volume | convert | normalize | track | compensate | integrate | raycast | "
+      "ms/frame | frames/s | bricks (visible/frame) | volume MiB | bytes/voxel | GPU MiB | ATE cm |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line,
+                  "| %s | %dx%d | %d^3 | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu (%.0f) | %.0f | "
+                  "%.1f | %s | %.2f |\n",
+                  DeviceName(r.device), r.c.width, r.c.height, r.c.resolution, r.ms.convert, r.ms.normalize,
+                  r.ms.track, r.ms.compensate, r.ms.integrate, r.ms.raycast, r.wall_ms, r.fps, r.bricks,
+                  r.visible_bricks, r.volume_mib, r.bytes_per_voxel,
+                  r.device == Device::kCuda ? std::to_string(int(std::lround(r.gpu_mib))).c_str() : "-", r.ate_cm);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace hdrf::pipeline

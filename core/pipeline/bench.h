@@ -1,0 +1,47 @@
+// The engine benchmark: per-stage milliseconds and end-to-end frames per second on the
+// synthetic sensor, per device and size, with the memory the model takes. Used by
+// `hdrfusion bench --suite engine` and by `hdrfusion-bench` (core-only builds, GPU machine).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/cuda_runtime.h"
+#include "pipeline/pipeline.h"
+
+namespace hdrf::pipeline {
+
+struct BenchCase {
+  int width, height, resolution;
+};
+
+struct EngineBenchOptions {
+  int frames = 60;                 // timed frames, after 5 warm-up frames
+  std::vector<Device> devices = {Device::kCpu};
+  std::vector<BenchCase> cases = {{320, 240, 256}, {640, 480, 512}};
+  tracking::TrackerKind tracker = tracking::TrackerKind::kNrIcp;
+};
+
+struct EngineBenchRow {
+  Device device = Device::kCpu;
+  BenchCase c{};
+  StageTimes ms;                   // mean per frame
+  double wall_ms = 0;              // mean wall time per frame, end to end
+  double fps = 0;                  // 1000 / wall_ms
+  std::size_t bricks = 0;          // allocated at the end
+  double visible_bricks = 0;       // mean bricks integrated per frame
+  double volume_mib = 0;           // brick index + allocated voxels
+  double bytes_per_voxel = 0;      // volume bytes / allocated voxels
+  double gpu_mib = 0;              // GPU memory taken by the pipeline (CUDA rows)
+  double ate_cm = 0;               // RMS error of the trajectory against the truth
+  int lost = 0;
+};
+
+// Runs every device x case; `progress` is told each finished row.
+std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
+                                           const std::function<void(const EngineBenchRow&)>& progress = {});
+// Markdown table of the rows.
+std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows);
+
+}  // namespace hdrf::pipeline

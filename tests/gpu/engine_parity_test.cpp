@@ -1,0 +1,221 @@
+// The CUDA backend against the CPU reference: each stage on identical inputs, then a whole
+// 100-frame scan. Skips (with the reason) where no GPU is usable.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "common/cuda_runtime.h"
+#include "common/se3.h"
+#include "pipeline/backend.h"
+#include "pipeline/frame_source.h"
+#include "pipeline/pipeline.h"
+
+namespace hdrf::pipeline {
+namespace {
+
+std::vector<FrameInput> Frames(int n, int w, int h, int seed = 1) {
+  sim::SimOptions so;
+  so.width = w;
+  so.height = h;
+  so.frames = n;
+  so.seed = seed;
+  so.ae.mode = sim::AeMode::kFlicker;
+  SyntheticFrameSource src(so);
+  std::vector<FrameInput> out(static_cast<std::size_t>(n));
+  for (auto& f : out) src.Next(f);
+  return out;
+}
+
+SensorInfo Sensor(int w, int h) {
+  sim::SimOptions so;
+  so.width = w;
+  so.height = h;
+  so.frames = 1;
+  return SyntheticFrameSource(so).sensor();
+}
+
+// Largest difference relative to the largest magnitude of the reference image (a stated,
+// scale-free tolerance), and the share of pixels that differ at all.
+struct Diff {
+  double rel = 0, share = 0;
+};
+template <typename T, typename F>
+Diff Compare(const Image<T>& a, const Image<T>& b, F values) {
+  EXPECT_EQ(a.width(), b.width());
+  EXPECT_EQ(a.height(), b.height());
+  double worst = 0, scale = 1e-30;
+  long differ = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    const auto va = values(a[i]), vb = values(b[i]);
+    bool d = false;
+    for (std::size_t k = 0; k < va.size(); ++k) {
+      scale = std::max(scale, std::abs(double(va[k])));
+      worst = std::max(worst, std::abs(double(va[k]) - double(vb[k])));
+      d = d || va[k] != vb[k];
+    }
+    differ += d;
+  }
+  return {worst / scale, a.size() ? double(differ) / double(a.size()) : 0};
+}
+Diff CompareF(const Image<float>& a, const Image<float>& b) {
+  return Compare(a, b, [](float v) { return std::array<float, 1>{v}; });
+}
+Diff Compare3(const Image<Float3>& a, const Image<Float3>& b) {
+  return Compare(a, b, [](Float3 v) { return std::array<float, 3>{v.x, v.y, v.z}; });
+}
+
+void ExpectPosesClose(const Pose& a, const Pose& b, double rad, double m, const char* what) {
+  const Pose d = a.inverse() * b;
+  EXPECT_LE(se3::RotationAngle(d), rad) << what;
+  EXPECT_LE(se3::TranslationNorm(d), m) << what;
+}
+
+TEST(GpuEngine, CudaRequestFallsBackToTheCpuWithAReasonWhereNoGpu) {
+  PipelineOptions o;
+  o.device = Device::kCuda;
+  const SensorInfo s = Sensor(160, 120);
+  Pipeline p(o, s.camera, s);
+  if (CudaAvailable()) {
+    EXPECT_EQ(p.device(), Device::kCuda);
+    EXPECT_TRUE(p.device_note().empty());
+  } else {
+    EXPECT_EQ(p.device(), Device::kCpu);
+    EXPECT_NE(p.device_note().find("running on the CPU"), std::string::npos) << p.device_note();
+  }
+}
+
+TEST(GpuParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const int w = 320, h = 240;
+  const auto frames = Frames(3, w, h);
+  const SensorInfo s = Sensor(w, h);
+  PipelineOptions o;
+  o.volume.resolution = 256;
+  Pipeline cpu(o, s.camera, s);
+  o.device = Device::kCuda;
+  Pipeline gpu(o, s.camera, s);
+  ASSERT_EQ(gpu.device(), Device::kCuda);
+  for (int k = 0; k < 3; ++k) {
+    const FrameReport rc = cpu.Process(frames[std::size_t(k)]);
+    const FrameReport rg = gpu.Process(frames[std::size_t(k)]);
+    // Poses: the same per-pixel terms, summed in another order.
+    ExpectPosesClose(rc.T_world_camera, rg.T_world_camera, 1e-5, 1e-5, "pose");
+    EXPECT_EQ(rc.tracking.lost, rg.tracking.lost);
+    EXPECT_NEAR(rc.exposure_ratio, rg.exposure_ratio, 1e-4 * rc.exposure_ratio) << "frame " << k;
+    EXPECT_EQ(rc.allocated_bricks, rg.allocated_bricks) << "frame " << k;
+    const FrameImages a = cpu.backend().Download(), b = gpu.backend().Download();
+    const Diff d_rad = Compare3(a.radiance, b.radiance), d_conf = CompareF(a.confidence, b.confidence);
+    const Diff d_depth = CompareF(a.depth, b.depth), d_nr = CompareF(a.nr, b.nr);
+    std::printf("frame %d parity (max diff / max value): radiance %.2g confidence %.2g depth %.2g nr %.2g\n", k,
+                d_rad.rel, d_conf.rel, d_depth.rel, d_nr.rel);
+    EXPECT_LE(d_rad.rel, 1e-6);
+    EXPECT_LE(d_conf.rel, 1e-6);
+    EXPECT_LE(d_depth.rel, 1e-6);
+    EXPECT_LE(d_nr.rel, 1e-5);
+    for (std::size_t l = 0; l < a.live_vertex.size(); ++l) {
+      const Diff dv = Compare3(a.live_vertex[l], b.live_vertex[l]);
+      const Diff dn = Compare3(a.live_normal[l], b.live_normal[l]);
+      const Diff di = CompareF(a.live_intensity[l], b.live_intensity[l]);
+      const Diff dw = CompareF(a.live_weight[l], b.live_weight[l]);
+      const Diff dg = CompareF(a.live_grad_x[l], b.live_grad_x[l]);
+      std::printf("  level %zu: vertex %.2g normal %.2g intensity %.2g weight %.2g gradient %.2g\n", l, dv.rel,
+                  dn.rel, di.rel, dw.rel, dg.rel);
+      EXPECT_LE(dv.rel, 1e-6);
+      EXPECT_LE(dn.rel, 1e-5);
+      EXPECT_LE(di.rel, 1e-5);
+      EXPECT_LE(dw.rel, 1e-6);
+      EXPECT_LE(dg.rel, 1e-5);
+    }
+    // The ray cast depends on the pose (equal to ~1e-7 here) and on the whole volume.
+    const Diff rv = Compare3(a.render.vertex, b.render.vertex);
+    const Diff rr = Compare3(a.render.radiance, b.render.radiance);
+    const Diff rd = CompareF(a.render.depth, b.render.depth);
+    std::printf("  raycast: vertex %.2g (%.2g%% of pixels differ) radiance %.2g depth %.2g\n", rv.rel,
+                100 * rv.share, rr.rel, rd.rel);
+    EXPECT_LE(rd.share, 0.002) << "hit/miss or depth differs on more than 0.2 % of pixels";
+    // Volumes: voxel by voxel over the same bricks.
+    const volume::Volume& vc = cpu.volume();
+    const volume::Volume& vg = gpu.volume();
+    ASSERT_EQ(vc.allocated_bricks(), vg.allocated_bricks());
+    double tsdf = 0, weight = 0, rad = 0, rad_scale = 1e-30;
+    long missing = 0;
+    for (const auto& bc : vc.bricks())
+      for (int i = 0; i < 512; ++i) {
+        const int x = bc[0] * 8 + (i & 7), y = bc[1] * 8 + ((i >> 3) & 7), z = bc[2] * 8 + (i >> 6);
+        const volume::Voxel* p = vc.Get(x, y, z);
+        const volume::Voxel* q = vg.Get(x, y, z);
+        if (!q) {
+          ++missing;
+          continue;
+        }
+        tsdf = std::max(tsdf, double(std::abs(p->tsdf - q->tsdf)));
+        weight = std::max(weight, double(std::abs(p->w - q->w)));
+        rad = std::max(rad, double(MaxComponent({std::abs(p->radiance.x - q->radiance.x),
+                                                 std::abs(p->radiance.y - q->radiance.y),
+                                                 std::abs(p->radiance.z - q->radiance.z)})));
+        rad_scale = std::max(rad_scale, double(MaxComponent(p->radiance)));
+      }
+    std::printf("  volume: %zu bricks, max |tsdf| diff %.2g, weight %.2g, radiance %.2g (relative)\n",
+                vc.allocated_bricks(), tsdf, weight, rad / rad_scale);
+    EXPECT_EQ(missing, 0);
+    EXPECT_LE(tsdf, 1e-3);
+    EXPECT_LE(weight, 1e-3);
+    EXPECT_LE(rad / rad_scale, 1e-3);
+    // Gauss-Newton sums on identical reference and live frames at one pose.
+    if (k > 0) {
+      const Pose T = rc.T_world_camera;
+      for (int l = 0; l < o.tracker.levels; ++l) {
+        const tracking::GnSystem ga = cpu.backend().Accumulate(l, T, T), gb = gpu.backend().Accumulate(l, T, T);
+        double worst = 0, scale = 1e-30;
+        for (int i = 0; i < tracking::GnSystem::kSize; ++i) {
+          scale = std::max(scale, std::abs(ga.v[i]));
+          worst = std::max(worst, std::abs(ga.v[i] - gb.v[i]));
+        }
+        std::printf("  Gauss-Newton level %d: %.0f ICP + %.0f photometric terms, max diff / max %.2g\n", l,
+                    ga.v[31], ga.v[32], worst / scale);
+        EXPECT_EQ(ga.v[31], gb.v[31]);
+        EXPECT_EQ(ga.v[32], gb.v[32]);
+        EXPECT_LE(worst / scale, 1e-9);
+      }
+    }
+  }
+}
+
+TEST(GpuParity, HundredFrameScanTrajectoriesAgree) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const int w = 320, h = 240, n = 100;
+  const auto frames = Frames(n, w, h);
+  const SensorInfo s = Sensor(w, h);
+  PipelineOptions o;
+  Pipeline cpu(o, s.camera, s);
+  o.device = Device::kCuda;
+  Pipeline gpu(o, s.camera, s);
+  double worst_t = 0, worst_r = 0, ate_c = 0, ate_g = 0;
+  int lost_c = 0, lost_g = 0;
+  const Pose T0inv = frames[0].T_world_camera_true->inverse();
+  for (int k = 0; k < n; ++k) {
+    const FrameReport rc = cpu.Process(frames[std::size_t(k)]);
+    const FrameReport rg = gpu.Process(frames[std::size_t(k)]);
+    const Pose d = rc.T_world_camera.inverse() * rg.T_world_camera;
+    worst_t = std::max(worst_t, se3::TranslationNorm(d));
+    worst_r = std::max(worst_r, se3::RotationAngle(d));
+    lost_c += rc.tracking.lost;
+    lost_g += rg.tracking.lost;
+    const Pose truth = T0inv * *frames[std::size_t(k)].T_world_camera_true;
+    ate_c = std::max(ate_c, (truth.translation() - rc.T_world_camera.translation()).norm());
+    ate_g = std::max(ate_g, (truth.translation() - rg.T_world_camera.translation()).norm());
+  }
+  std::printf("100-frame scan parity: max trajectory difference %.3g mm, %.3g mrad; lost %d / %d; "
+              "max error to truth cpu %.2f cm, cuda %.2f cm\n",
+              1e3 * worst_t, 1e3 * worst_r, lost_c, lost_g, 100 * ate_c, 100 * ate_g);
+  EXPECT_LE(worst_t, 1e-3);
+  EXPECT_EQ(lost_c, lost_g);
+}
+
+}  // namespace
+}  // namespace hdrf::pipeline
