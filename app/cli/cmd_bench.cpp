@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "common/error.h"
 #include "pipeline/frame_source.h"
+#include "pipeline/bench.h"
 #include "pipeline/pipeline.h"
 #include "sim/synthetic_source.h"
 
@@ -19,6 +20,7 @@ Command AddBenchCommand(CLI::App& app) {
   struct Args {
     std::string suite = "sim";
     int frames = 60;
+    std::string device = "both";
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
@@ -26,38 +28,26 @@ Command AddBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"sim", "engine"}))->capture_default_str();
   cmd->add_option("--frames", a->frames, "Frames per measurement")->check(CLI::Range(5, 100000))
       ->capture_default_str();
+  cmd->add_option("--device", a->device, "Engine suite: cpu, cuda or both (CUDA rows where a GPU is usable)")
+      ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
   return {cmd, [a] {
     if (a->suite == "engine") {
-      std::printf("engine on the CPU, scene room, flicker auto exposure, tracker nr+icp, %d OpenMP threads;\n"
+      pipeline::EngineBenchOptions o;
+      o.frames = a->frames;
+      o.devices = a->device == "cpu" ? std::vector<Device>{Device::kCpu}
+                  : a->device == "cuda" ? std::vector<Device>{Device::kCuda}
+                                        : std::vector<Device>{Device::kCpu, Device::kCuda};
+      std::string why;
+      const bool gpu = CudaAvailable(&why);
+      if (!gpu && a->device != "cpu") std::fprintf(stderr, "bench: no CUDA rows: %s\n", why.c_str());
+      std::printf("engine, scene room, flicker auto exposure, tracker nr+icp, %d OpenMP threads%s%s;\n"
                   "frames rendered first (not timed), %d timed after 5 warm-up frames\n\n",
-                  omp_get_max_threads(), a->frames);
-      std::printf("| size | volume | convert | normalize | track | compensate | integrate | raycast | total ms | frames/s |\n"
-                  "|---|---|---|---|---|---|---|---|---|---|\n");
-      for (auto [w, h, res] : {std::tuple{320, 240, 256}, {640, 480, 512}}) {
-        sim::SimOptions so;
-        so.width = w;
-        so.height = h;
-        so.frames = a->frames + 5;
-        so.ae.mode = sim::AeMode::kFlicker;
-        pipeline::SyntheticFrameSource src(so);
-        std::vector<pipeline::FrameInput> frames(std::size_t(src.size()));
-        for (auto& f : frames) src.Next(f);
-        pipeline::PipelineOptions po;
-        po.volume.resolution = res;
-        pipeline::Pipeline pipe(po, src.sensor().camera, src.sensor());
-        pipeline::StageTimes sum;
-        for (std::size_t i = 0; i < frames.size(); ++i) {
-          const auto r = pipe.Process(frames[i]);
-          if (i < 5) continue;
-          sum.convert += r.ms.convert; sum.normalize += r.ms.normalize; sum.track += r.ms.track;
-          sum.compensate += r.ms.compensate; sum.integrate += r.ms.integrate; sum.raycast += r.ms.raycast;
-        }
-        const double n = a->frames;
-        std::printf("| %dx%d | %d^3 | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n", w, h, res,
-                    sum.convert / n, sum.normalize / n, sum.track / n, sum.compensate / n, sum.integrate / n,
-                    sum.raycast / n, sum.total() / n, 1000.0 * n / sum.total());
-        std::fflush(stdout);
-      }
+                  omp_get_max_threads(), gpu ? ", GPU " : "", gpu ? CudaDeviceDescription().c_str() : "", a->frames);
+      const auto rows = pipeline::RunEngineBench(o, [](const pipeline::EngineBenchRow& r) {
+        std::fprintf(stderr, "bench: %s %dx%d %d^3 done: %.1f frames/s\n", DeviceName(r.device), r.c.width,
+                     r.c.height, r.c.resolution, r.fps);
+      });
+      std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
       return 0;
     }
     std::printf("synthetic sensor, scene room, flicker auto exposure, %d OpenMP threads\n\n",

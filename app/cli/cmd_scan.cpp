@@ -88,23 +88,18 @@ Command AddScanCommand(CLI::App& app) {
     if (a->pcf >= 0) o.pcf = a->pcf;
     if (a->device == "cuda") o.device = Device::kCuda;
     o.Check();
-    if (o.device == Device::kCuda) {
-      std::string why;
-      const bool gpu = CudaAvailable(&why);
-      std::fprintf(stderr, "scan: the CUDA engine is not written yet (%s); running on the CPU\n",
-                   gpu ? "a GPU is present" : why.c_str());
-      o.device = Device::kCpu;
-    }
     auto source = OpenSource(a->source, a->response);
     const fs::path out = a->out;
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
     pipeline::Pipeline pipe(o, source->sensor().camera, source->sensor());
+    if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
     const int total = a->max_frames > 0 ? std::min(a->max_frames, source->size()) : source->size();
-    std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm)\n",
+    std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm), on the %s\n",
                  source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
-                 o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m());
+                 o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m(),
+                 pipe.device() == Device::kCuda ? ("GPU: " + CudaDeviceDescription()).c_str() : "CPU");
     std::vector<io::TimedPose> trajectory;
     json frames = json::array();
     std::optional<Pose> first_true;
@@ -161,6 +156,7 @@ Command AddScanCommand(CLI::App& app) {
     std::sort(exp_err.begin(), exp_err.end());
     const double total_ms = sum.total();
     json report = {{"source", source->description()},
+                   {"device", DeviceName(pipe.device())},
                    {"frames", n},
                    {"lost_frames", lost},
                    {"options", json::parse(io::PipelineOptionsToJson(o))},
@@ -169,7 +165,7 @@ Command AddScanCommand(CLI::App& app) {
                                 {"raycast", sum.raycast / n}, {"total", total_ms / n}}},
                    {"fps", total_ms > 0 ? 1000.0 * n / total_ms : 0},
                    {"volume", {{"allocated_bricks", pipe.volume().allocated_bricks()},
-                               {"bytes", pipe.volume().bytes()}, {"full", pipe.volume().full()}}},
+                               {"bytes", pipe.volume_bytes()}, {"full", pipe.volume().full()}}},
                    {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
                    {"frames_detail", frames}};
     if (!exp_err.empty()) report["exposure_median_relative_error"] = exp_err[exp_err.size() / 2];
