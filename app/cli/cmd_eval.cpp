@@ -21,11 +21,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 }  // namespace
 
 Command AddEvalCommand(CLI::App& app) {
@@ -71,48 +66,18 @@ Command AddEvalCommand(CLI::App& app) {
       const sim::Scene scene = sim::Scene::Build(syn->scene, syn->seed);
       const mesh::Mesh m = io::ReadPly(ply);
       // The scan's world is the first scanned camera; ground truth maps it into the scene.
-      const RigidTransform T = ToRigidTransform(g.front());
-      std::vector<double> dist;
-      std::vector<Float3> est_rad, true_rad;
-      const std::size_t step = std::max<std::size_t>(1, m.position.size() / 200000);
-      for (std::size_t i = 0; i < m.position.size(); i += step) {
-        const Float3 p = T.Apply(m.position[i]);
-        dist.push_back(scene.DistanceToSurface(p));
-        if (MaxComponent(m.radiance[i]) > 0) {
-          est_rad.push_back(m.radiance[i]);
-          true_rad.push_back(scene.RadianceAt(p));
-        }
-      }
-      out["mesh_vertices"] = m.position.size();
-      out["mesh_median_distance_m"] = Median(dist);
-      std::printf("mesh: %zu vertices, distance to the true surface: median %.4f m\n", m.position.size(), Median(dist));
-      if (!est_rad.empty()) {
-        // One scale per channel (model units are the first frame's radiance units).
-        double scale[3];
-        for (int c = 0; c < 3; ++c) {
-          std::vector<double> r;
-          for (std::size_t i = 0; i < est_rad.size(); ++i) {
-            const double a_ = c == 0 ? est_rad[i].x : (c == 1 ? est_rad[i].y : est_rad[i].z);
-            const double b_ = c == 0 ? true_rad[i].x : (c == 1 ? true_rad[i].y : true_rad[i].z);
-            if (a_ > 0 && b_ > 0) r.push_back(std::log(b_ / a_));
-          }
-          scale[c] = std::exp(Median(r));
-        }
-        std::vector<double> stops;
-        for (std::size_t i = 0; i < est_rad.size(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            const double a_ = (c == 0 ? est_rad[i].x : (c == 1 ? est_rad[i].y : est_rad[i].z)) * scale[c];
-            const double b_ = c == 0 ? true_rad[i].x : (c == 1 ? true_rad[i].y : true_rad[i].z);
-            if (a_ > 0 && b_ > 0) stops.push_back(std::abs(std::log2(a_ / b_)));
-          }
-        const double within01 = double(std::count_if(stops.begin(), stops.end(), [](double s) { return s <= 0.1; })) / double(stops.size());
-        const double within025 = double(std::count_if(stops.begin(), stops.end(), [](double s) { return s <= 0.25; })) / double(stops.size());
-        out["radiance_median_error_stops"] = Median(stops);
-        out["radiance_within_0.1_stop"] = within01;
-        out["radiance_within_0.25_stop"] = within025;
-        out["radiance_scale"] = {scale[0], scale[1], scale[2]};
+      const eval::ModelError me = eval::CompareModel(m, scene, g.front());
+      out["mesh_vertices"] = me.vertices;
+      out["mesh_median_distance_m"] = me.mesh_median_distance_m;
+      std::printf("mesh: %zu vertices, distance to the true surface: median %.4f m\n", me.vertices,
+                  me.mesh_median_distance_m);
+      if (me.radiance_samples > 0) {
+        out["radiance_median_error_stops"] = me.radiance_median_stops;
+        out["radiance_within_0.1_stop"] = me.within_01_stop;
+        out["radiance_within_0.25_stop"] = me.within_025_stop;
+        out["radiance_scale"] = {me.scale[0], me.scale[1], me.scale[2]};
         std::printf("radiance: median error %.3f stops after one scale per channel; %.1f %% within 0.1 stop, %.1f %% within 0.25\n",
-                    Median(stops), 100 * within01, 100 * within025);
+                    me.radiance_median_stops, 100 * me.within_01_stop, 100 * me.within_025_stop);
       }
     }
     io::WriteFileAtomically(fs::path(a->dir) / "eval.json", out.dump(1) + "\n");

@@ -57,7 +57,7 @@ void WriteRender(const fs::path& dir, const std::string& name, const volume::Vol
 
 Command AddScanCommand(CLI::App& app) {
   struct Args {
-    std::string source, out, tracker, device = "cpu", options, response;
+    std::string source, out, tracker, device = "cpu", options, response, voxel;
     int volume_res = -1, pcf = -1, max_frames = 0;  // -1: not given
     double volume_size = -1;
     bool frame_to_frame = false;
@@ -74,6 +74,8 @@ Command AddScanCommand(CLI::App& app) {
   cmd->add_option("--volume-res", a->volume_res, "Voxels per side (multiple of 8; default 256)");
   cmd->add_option("--volume-size", a->volume_size, "Side of the volume in metres (default 6)");
   cmd->add_option("--pcf", a->pcf, "Pixel confidence p0..p3 (default 1)");
+  cmd->add_option("--voxel", a->voxel, "Voxel storage: compact (12 B, default), no-nr (24 B) or full (28 B)")
+      ->check(CLI::IsMember({"compact", "no-nr", "full"}));
   cmd->add_option("--device", a->device, "cpu or cuda")->check(CLI::IsMember({"cpu", "cuda"}));
   cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
       ->check(CLI::IsMember({"srgb"}));
@@ -86,6 +88,7 @@ Command AddScanCommand(CLI::App& app) {
     if (a->volume_res != -1) o.volume.resolution = a->volume_res;
     if (a->volume_size != -1) o.volume.size_m = float(a->volume_size);
     if (a->pcf >= 0) o.pcf = a->pcf;
+    if (!a->voxel.empty()) o.volume.encoding = volume::ParseVoxelEncoding(a->voxel);
     if (a->device == "cuda") o.device = Device::kCuda;
     o.Check();
     auto source = OpenSource(a->source, a->response);

@@ -55,4 +55,57 @@ TrajectoryError CompareTrajectories(const std::vector<Pose>& est, const std::vec
   return e;
 }
 
+namespace {
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+float Channel(const Float3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
+}  // namespace
+
+ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose& T_scene_model,
+                        std::size_t max_samples) {
+  ModelError e;
+  e.vertices = m.position.size();
+  const RigidTransform T = ToRigidTransform(T_scene_model);
+  std::vector<double> dist;
+  std::vector<Float3> est, truth;
+  const std::size_t step = std::max<std::size_t>(1, m.position.size() / std::max<std::size_t>(1, max_samples));
+  for (std::size_t i = 0; i < m.position.size(); i += step) {
+    const Float3 p = T.Apply(m.position[i]);
+    dist.push_back(scene.DistanceToSurface(p));
+    if (MaxComponent(m.radiance[i]) > 0) {
+      est.push_back(m.radiance[i]);
+      truth.push_back(scene.RadianceAt(p));
+    }
+  }
+  e.mesh_median_distance_m = Median(dist);
+  e.radiance_samples = est.size();
+  if (est.empty()) return e;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < est.size(); ++i) {
+      const double a = Channel(est[i], c), b = Channel(truth[i], c);
+      if (a > 0 && b > 0) r.push_back(std::log(b / a));
+    }
+    e.scale[c] = std::exp(Median(r));
+  }
+  std::vector<double> stops;
+  for (std::size_t i = 0; i < est.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double a = Channel(est[i], c) * e.scale[c], b = Channel(truth[i], c);
+      if (a > 0 && b > 0) stops.push_back(std::abs(std::log2(a / b)));
+    }
+  if (stops.empty()) return e;
+  const auto share = [&](double lim) {
+    return double(std::count_if(stops.begin(), stops.end(), [lim](double s) { return s <= lim; })) /
+           double(stops.size());
+  };
+  e.radiance_median_stops = Median(stops);
+  e.within_01_stop = share(0.1);
+  e.within_025_stop = share(0.25);
+  return e;
+}
+
 }  // namespace hdrf::eval

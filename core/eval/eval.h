@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "common/se3.h"
+#include "mesh/mesh.h"
+#include "sim/scene.h"
 
 namespace hdrf::eval {
 
@@ -17,5 +19,19 @@ struct TrajectoryError {
 // estimated[i] and truth[i] are poses of the same frame (already associated by time).
 TrajectoryError CompareTrajectories(const std::vector<Pose>& estimated,
                                     const std::vector<Pose>& truth);
+
+// The model against the synthetic scene: distance of mesh vertices to the true surface, and
+// the fused radiance against the true radiance after one scale per channel (the model's
+// units are the first frame's radiance units), in stops.
+struct ModelError {
+  std::size_t vertices = 0, radiance_samples = 0;
+  double mesh_median_distance_m = 0;
+  double radiance_median_stops = 0, within_01_stop = 0, within_025_stop = 0;
+  double scale[3] = {1, 1, 1};
+};
+// T_scene_model maps model (first camera) coordinates into the scene; at most
+// `max_samples` vertices are used (evenly spaced).
+ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose& T_scene_model,
+                        std::size_t max_samples = 200000);
 
 }  // namespace hdrf::eval

@@ -49,7 +49,7 @@ void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOp
   if (j.contains("volume")) {
     const json& v = j["volume"];
     RefuseUnknown(file, v, "volume.", {"resolution", "size_m", "truncation_voxels", "max_weight",
-                                       "max_radiance_weight", "tau0", "tau1_deg", "max_memory_mb"});
+                                       "max_radiance_weight", "tau0", "tau1_deg", "max_memory_mb", "voxel"});
     Get(file, v, "volume.", "resolution", o.volume.resolution);
     Get(file, v, "volume.", "size_m", o.volume.size_m);
     Get(file, v, "volume.", "truncation_voxels", o.volume.truncation_voxels);
@@ -58,6 +58,15 @@ void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOp
     Get(file, v, "volume.", "tau0", o.volume.tau0);
     Get(file, v, "volume.", "tau1_deg", o.volume.tau1_deg);
     Get(file, v, "volume.", "max_memory_mb", o.volume.max_memory_mb);
+    if (v.contains("voxel")) {
+      std::string e;
+      Get(file, v, "volume.", "voxel", e);
+      try {
+        o.volume.encoding = volume::ParseVoxelEncoding(e);
+      } catch (const Error& err) {
+        throw InputError(file, std::string("'volume.voxel': ") + err.what());
+      }
+    }
   }
   if (j.contains("tracker")) {
     const json& t = j["tracker"];
@@ -109,7 +118,8 @@ std::string PipelineOptionsToJson(const pipeline::PipelineOptions& o) {
   j["volume"] = {{"resolution", o.volume.resolution}, {"size_m", o.volume.size_m},
                  {"truncation_voxels", o.volume.truncation_voxels}, {"max_weight", o.volume.max_weight},
                  {"max_radiance_weight", o.volume.max_radiance_weight}, {"tau0", o.volume.tau0},
-                 {"tau1_deg", o.volume.tau1_deg}, {"max_memory_mb", o.volume.max_memory_mb}};
+                 {"tau1_deg", o.volume.tau1_deg}, {"max_memory_mb", o.volume.max_memory_mb},
+                 {"voxel", volume::VoxelEncodingName(o.volume.encoding)}};
   j["tracker"] = {{"kind", tracking::TrackerName(o.tracker.kind)},
                   {"frame_to_model", o.tracker.frame_to_model},
                   {"levels", o.tracker.levels},

@@ -29,16 +29,15 @@ Mesh ExtractMesh(const volume::Volume& vol, void (*progress)(double, void*), voi
       for (int ly = 0; ly < 8; ++ly)
         for (int lx = 0; lx < 8; ++lx) {
           const int x = b[0] * 8 + lx, y = b[1] * 8 + ly, z = b[2] * 8 + lz;
-          const volume::Voxel* c[8];
+          volume::Voxel c[8];
           int ix[8][3];
           bool ok = true, pos = false, neg = false;
           for (int k = 0; k < 8 && ok; ++k) {
             ix[k][0] = x + (k & 1);
             ix[k][1] = y + ((k >> 1) & 1);
             ix[k][2] = z + (k >> 2);
-            c[k] = vol.Get(ix[k][0], ix[k][1], ix[k][2]);
-            ok = c[k] && c[k]->w > 0;
-            if (ok) (c[k]->tsdf < 0 ? neg : pos) = true;
+            ok = vol.Get(ix[k][0], ix[k][1], ix[k][2], &c[k]) && c[k].w > 0;
+            if (ok) (c[k].tsdf < 0 ? neg : pos) = true;
           }
           if (!ok || !pos || !neg) continue;
           // Vertex on the edge between corners a and b (shared by id).
@@ -52,7 +51,7 @@ Mesh ExtractMesh(const volume::Volume& vol, void (*progress)(double, void*), voi
             const std::uint64_t key = voxel_id(ix[lo][0], ix[lo][1], ix[lo][2]) * 27u + std::uint64_t(code);
             const auto it = edge_vertex.find(key);
             if (it != edge_vertex.end()) return it->second;
-            const float fa = c[a]->tsdf, fb = c[bb]->tsdf;
+            const float fa = c[a].tsdf, fb = c[bb].tsdf;
             const float t = fa / (fa - fb);
             const Float3 pa = centre(ix[a][0], ix[a][1], ix[a][2]);
             const Float3 pb = centre(ix[bb][0], ix[bb][1], ix[bb][2]);
@@ -60,12 +59,12 @@ Mesh ExtractMesh(const volume::Volume& vol, void (*progress)(double, void*), voi
             Float3 nrm{0, 0, 1};
             vol.Gradient(p, &nrm);
             Float3 rad{0, 0, 0};
-            if (c[a]->wr > 0 && c[bb]->wr > 0)
-              rad = c[a]->radiance + (c[bb]->radiance - c[a]->radiance) * t;
-            else if (c[a]->wr > 0)
-              rad = c[a]->radiance;
-            else if (c[bb]->wr > 0)
-              rad = c[bb]->radiance;
+            if (c[a].wr > 0 && c[bb].wr > 0)
+              rad = c[a].radiance + (c[bb].radiance - c[a].radiance) * t;
+            else if (c[a].wr > 0)
+              rad = c[a].radiance;
+            else if (c[bb].wr > 0)
+              rad = c[bb].radiance;
             const auto id = std::int32_t(m.position.size());
             m.position.push_back(p);
             m.normal.push_back(nrm);
@@ -83,7 +82,7 @@ Mesh ExtractMesh(const volume::Volume& vol, void (*progress)(double, void*), voi
           };
           for (const auto& tet : kTets) {
             int in[4], out[4], ni = 0, no = 0;
-            for (int k : tet) (c[k]->tsdf < 0 ? in[ni++] : out[no++]) = k;
+            for (int k : tet) (c[k].tsdf < 0 ? in[ni++] : out[no++]) = k;
             if (ni == 0 || no == 0) continue;
             if (ni == 1) {
               emit(vertex(in[0], out[0]), vertex(in[0], out[1]), vertex(in[0], out[2]));

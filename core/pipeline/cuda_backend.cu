@@ -130,7 +130,7 @@ class CudaBackend final : public Backend {
     return std::size_t(n);
   }
   std::size_t VolumeBytes() override {
-    return index_.size() * sizeof(int) + std::size_t(allocated_) * 512 * sizeof(volume::Voxel);
+    return index_.size() * sizeof(int) + std::size_t(allocated_) * 512 * std::size_t(vbytes_);
   }
   void Raycast(const Pose& T_world_camera) override;
   void ReferenceFromRender() override;
@@ -144,7 +144,15 @@ class CudaBackend final : public Backend {
   void BuildReferencePyramid();
   void RaycastInto(RenderD& out, const Pose& T);
   void Grow(int bricks);
-  volume::VolumeView DeviceView() const;
+  template <typename V>
+  volume::VolumeView<V> DeviceView() const;
+  template <typename V>
+  void FillDefault(long first, long count);
+  template <typename V>
+  void IntegrateBricks(const volume::IntegrateArgs& a);
+  template <typename V>
+  void RaycastT(RenderD& out, const Pose& T);
+  void NormalizeLum(ImageView<const float> lum, ImageView<float> nr);
   template <typename Acc, typename F>
   Acc Sum(int w, int h, F f);
 
@@ -154,7 +162,7 @@ class CudaBackend final : public Backend {
   imaging::BilateralTables bilateral_;
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
-  DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_;
+  DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
   DeviceImage<Float3> radiance_;
   // Normalized radiance on the down-sampled grid.
   DeviceImage<float> cells_, mean_s_, std_s_;
@@ -174,7 +182,8 @@ class CudaBackend final : public Backend {
   bool mirror_fresh_ = true;
   DeviceBuffer<int> index_, flags_, scan_, todo_;
   DeviceBuffer<std::uint8_t> coarse_, visible_;
-  DeviceBuffer<volume::Voxel> pool_;
+  DeviceBuffer<std::uint8_t> pool_;  // 512 encoded voxels per brick
+  int vbytes_ = 0;
   DeviceBuffer<BrickCoord> coords_;
   DeviceBuffer<int> counts_;  // (new bricks, todo bricks)
   int allocated_ = 0, capacity_ = 0;
@@ -251,35 +260,47 @@ CudaBackend::CudaBackend(const BackendSetup& s)
   HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, sort_bytes, keys_.data(), keys_sorted_.data(),
                                                   vals_.data(), vals_sorted_.data(), int(ns)));
   HDRF_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, cum_bytes, cum_.data(), cum_.data(), int(ns)));
+  vbytes_ = volume::EncodingBytes(o_.volume.encoding);
+  lum_render_ = DeviceImage<float>(w, h);
   temp_ = DeviceBuffer<std::uint8_t>(std::max({scan_bytes, sort_bytes, cum_bytes, std::size_t(16)}));
   Grow(4096);
 }
 
-volume::VolumeView CudaBackend::DeviceView() const {
-  volume::VolumeView v = mirror_.view();  // geometry from the host twin
+template <typename V>
+volume::VolumeView<V> CudaBackend::DeviceView() const {
+  volume::VolumeView<V> v = mirror_.view<V>();  // geometry from the host twin
   v.index = index_.data();
   v.coarse = coarse_.data();
-  v.pool = const_cast<volume::Voxel*>(pool_.data());
+  v.pool = reinterpret_cast<V*>(const_cast<std::uint8_t*>(pool_.data()));
   return v;
+}
+
+template <typename V>
+void CudaBackend::FillDefault(long first, long count) {
+  V* p = reinterpret_cast<V*>(pool_.data());
+  ForEachIndex(int(count), [=] __device__(int i) { p[first + i] = V{}; });
 }
 
 void CudaBackend::Grow(int want) {
   const int max_bricks = int(std::min<std::size_t>(mirror_.max_bricks(), 1u << 30));
   const int cap = std::min(max_bricks, std::max(want, capacity_ * 2));
   if (cap <= capacity_) return;
-  DeviceBuffer<volume::Voxel> pool{std::size_t(cap) * 512};
+  DeviceBuffer<std::uint8_t> pool{std::size_t(cap) * 512 * std::size_t(vbytes_)};
   DeviceBuffer<BrickCoord> coords{std::size_t(cap)};
   if (allocated_ > 0) {
-    HDRF_CUDA_CHECK(cudaMemcpy(pool.data(), pool_.data(), std::size_t(allocated_) * 512 * sizeof(volume::Voxel),
+    HDRF_CUDA_CHECK(cudaMemcpy(pool.data(), pool_.data(), std::size_t(allocated_) * 512 * std::size_t(vbytes_),
                                cudaMemcpyDeviceToDevice));
     HDRF_CUDA_CHECK(cudaMemcpy(coords.data(), coords_.data(), std::size_t(allocated_) * sizeof(BrickCoord),
                                cudaMemcpyDeviceToDevice));
   }
-  volume::Voxel* p = pool.data();
-  const long first = long(capacity_) * 512;
-  ForEachIndex(int((long(cap) * 512 - first)), [=] __device__(int i) { p[first + i] = volume::Voxel{}; });
   pool_ = std::move(pool);
   coords_ = std::move(coords);
+  const long first = long(capacity_) * 512, count = long(cap) * 512 - first;
+  switch (o_.volume.encoding) {
+    case volume::VoxelEncoding::kNoNr: FillDefault<volume::NoNrVoxel>(first, count); break;
+    case volume::VoxelEncoding::kCompact: FillDefault<volume::CompactVoxel>(first, count); break;
+    default: FillDefault<volume::FullVoxel>(first, count);
+  }
   capacity_ = cap;
 }
 
@@ -317,13 +338,9 @@ void CudaBackend::Convert(const ColorImage& color, const DepthImage& depth_m) {
   }
 }
 
-void CudaBackend::Normalize(const ColorImage&) {
-  const int w = cam_.width, h = cam_.height, f = o_.nr.downsample;
-  const auto rad = radiance_.view();
-  const auto lum = lum_.view();
-  ForEachPixel(w, h, [=] __device__(int x, int y) { lum(x, y) = Luminance(rad(x, y)); });
+void CudaBackend::NormalizeLum(ImageView<const float> lumc, ImageView<float> nr) {
+  const int w = lumc.width, h = lumc.height, f = o_.nr.downsample;
   const auto cells = cells_.view();
-  const ImageView<const float> lumc = lum;
   ForEachPixel(cells.width, cells.height,
                [=] __device__(int x, int y) { cells(x, y) = imaging::NrCellMean(lumc, x, y, f); });
   const imaging::NrIntegrals in{cnt_.view(), s1_.view(), s2_.view()};
@@ -334,12 +351,19 @@ void CudaBackend::Normalize(const ColorImage&) {
   const int r = o_.nr.patch / 2;
   ForEachPixel(cells.width, cells.height,
                [=] __device__(int x, int y) { imaging::NrLocalStats(in, x, y, r, &ms(x, y), &ss(x, y)); });
-  const auto nr = nr_.view();
   const float min_std = o_.nr.min_std;
   const ImageView<const float> msc = ms, ssc = ss;
   ForEachPixel(w, h, [=] __device__(int x, int y) {
     imaging::NrPixel(lumc, msc, ssc, f, min_std, x, y, &nr(x, y), nullptr, nullptr);
   });
+}
+
+void CudaBackend::Normalize(const ColorImage&) {
+  const int w = cam_.width, h = cam_.height;
+  const auto rad = radiance_.view();
+  const auto lum = lum_.view();
+  ForEachPixel(w, h, [=] __device__(int x, int y) { lum(x, y) = Luminance(rad(x, y)); });
+  NormalizeLum(lum, nr_.view());
   LiveLevelD& L0 = live_[0];
   if (o_.tracker.kind == tracking::TrackerKind::kIntensity) {
     const ImageView<const Rgb8> c = color_.view();
@@ -512,8 +536,20 @@ void CudaBackend::Integrate(const Pose& T, float ratio) {
     if (flags[i]) todo[pos[i]] = index[i];
     if (i == nb3 - 1) counts[1] = pos[i] + flags[i];
   });
-  volume::Voxel* pool = pool_.data();
+  switch (o_.volume.encoding) {
+    case volume::VoxelEncoding::kNoNr: IntegrateBricks<volume::NoNrVoxel>(a); break;
+    case volume::VoxelEncoding::kCompact: IntegrateBricks<volume::CompactVoxel>(a); break;
+    default: IntegrateBricks<volume::FullVoxel>(a);
+  }
+  mirror_fresh_ = false;
+}
+
+template <typename V>
+void CudaBackend::IntegrateBricks(const volume::IntegrateArgs& a) {
+  V* pool = reinterpret_cast<V*>(pool_.data());
   const BrickCoord* coords = coords_.data();
+  const int* todo = todo_.data();
+  const int* counts = counts_.data();
   IndexKernel<<<1024, 512>>>(1024 * 512, [=] __device__(int) {
     const int n_todo = counts[1];
     for (int k = blockIdx.x; k < n_todo; k += gridDim.x) {
@@ -523,11 +559,26 @@ void CudaBackend::Integrate(const Pose& T, float ratio) {
     }
   });
   HDRF_CUDA_CHECK_LAUNCH();
-  mirror_fresh_ = false;
 }
 
 void CudaBackend::RaycastInto(RenderD& out, const Pose& T) {
-  const volume::VolumeView V = DeviceView();
+  switch (o_.volume.encoding) {
+    case volume::VoxelEncoding::kNoNr: RaycastT<volume::NoNrVoxel>(out, T); break;
+    case volume::VoxelEncoding::kCompact: RaycastT<volume::CompactVoxel>(out, T); break;
+    default: RaycastT<volume::FullVoxel>(out, T);
+  }
+  if (!volume::EncodingStoresNr(o_.volume.encoding)) {
+    // The model keeps no NR: normalize the ray-cast radiance instead.
+    const auto rad = out.radiance.view();
+    const auto lum = lum_render_.view();
+    ForEachPixel(cam_.width, cam_.height, [=] __device__(int x, int y) { lum(x, y) = Luminance(rad(x, y)); });
+    NormalizeLum(lum, out.nr.view());
+  }
+}
+
+template <typename Enc>
+void CudaBackend::RaycastT(RenderD& out, const Pose& T) {
+  const volume::VolumeView<Enc> V = DeviceView<Enc>();
   const volume::RaycastArgs a{cam_, ToRigidTransform(T), 0.2f, 8.0f};
   const auto v = out.vertex.view(), n = out.normal.view(), r = out.radiance.view();
   const auto nr = out.nr.view(), d = out.depth.view();
@@ -620,10 +671,10 @@ const volume::Volume& CudaBackend::HostVolume() {
   if (mirror_fresh_) return mirror_;
   std::vector<int> index(index_.size());
   index_.Download(index.data());
-  std::vector<volume::Voxel> pool(std::size_t(allocated_) * 512);
+  std::vector<std::uint8_t> pool(std::size_t(allocated_) * 512 * std::size_t(vbytes_));
   std::vector<BrickCoord> bc(static_cast<std::size_t>(allocated_));
   if (allocated_ > 0) {
-    cuda::CopyDeviceToHost(pool.data(), pool_.data(), pool.size() * sizeof(volume::Voxel));
+    cuda::CopyDeviceToHost(pool.data(), pool_.data(), pool.size());
     cuda::CopyDeviceToHost(bc.data(), coords_.data(), bc.size() * sizeof(BrickCoord));
   }
   std::vector<std::array<int, 3>> coords(bc.size());

@@ -86,7 +86,7 @@ class CpuBackend final : public Backend {
   std::size_t AllocatedBricks() override { return volume_.allocated_bricks(); }
   std::size_t VolumeBytes() override { return volume_.bytes(); }
 
-  void Raycast(const Pose& T) override { render_ = volume_.Raycast(cam_, T); }
+  void Raycast(const Pose& T) override { render_ = Render(T); }
 
   void ReferenceFromRender() override {
     reference_ = tracking::MakeReference(render_.vertex, render_.normal, render_.nr, cam_, o_.tracker.levels,
@@ -105,7 +105,13 @@ class CpuBackend final : public Backend {
     reference_ = tracking::MakeReference(vw, nw, track_image_, cam_, o_.tracker.levels, T_pose);
   }
 
-  volume::Volume::Rendering Render(const Pose& T) override { return volume_.Raycast(cam_, T); }
+  volume::Volume::Rendering Render(const Pose& T) override {
+    volume::Volume::Rendering r = volume_.Raycast(cam_, T);
+    // A model without NR: the tracker normalizes the ray-cast radiance instead.
+    if (!volume::EncodingStoresNr(o_.volume.encoding))
+      r.nr = imaging::NormalizedRadiance(imaging::Luminance(r.radiance), o_.nr);
+    return r;
+  }
   const volume::Volume& HostVolume() override { return volume_; }
   FrameImages Download() override {
     FrameImages f;

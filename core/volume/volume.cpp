@@ -7,6 +7,21 @@
 
 namespace hdrf::volume {
 
+VoxelEncoding ParseVoxelEncoding(const std::string& s) {
+  if (s == "full") return VoxelEncoding::kFull;
+  if (s == "no-nr") return VoxelEncoding::kNoNr;
+  if (s == "compact") return VoxelEncoding::kCompact;
+  throw SettingError("--voxel", "unknown voxel encoding '" + s + "'; choose full, no-nr or compact");
+}
+const char* VoxelEncodingName(VoxelEncoding e) {
+  switch (e) {
+    case VoxelEncoding::kFull: return "full";
+    case VoxelEncoding::kNoNr: return "no-nr";
+    case VoxelEncoding::kCompact: return "compact";
+  }
+  return "?";
+}
+
 void VolumeOptions::Check() const {
   if (resolution < 8 || resolution % 8 != 0)
     throw SettingError("--volume-res", "must be a positive multiple of 8, got " + std::to_string(resolution));
@@ -16,11 +31,13 @@ void VolumeOptions::Check() const {
     throw SettingError("--volume-size", "must be a positive number of metres");
   if (!(truncation_voxels >= 1)) throw SettingError("truncation_voxels", "must be >= 1");
   if (!(max_weight > 0) || !(max_radiance_weight > 0)) throw SettingError("max_weight", "must be > 0");
+  if (encoding == VoxelEncoding::kCompact && (max_weight > 65 || max_radiance_weight > 65))
+    throw SettingError("max_weight", "compact voxels hold weights up to 65; lower the cap or use --voxel full");
   if (!(tau1_deg > 0 && tau1_deg <= 90)) throw SettingError("--tau1", "must be in (0, 90] degrees");
   if (!(tau0 >= 0 && tau0 < 1)) throw SettingError("--tau0", "must be in [0, 1)");
   const double nb = resolution / 8.0;
   const double index_mb = nb * nb * nb * 4.0 / (1024.0 * 1024.0);
-  const double brick_mb = 512.0 * sizeof(Voxel) / (1024.0 * 1024.0);
+  const double brick_mb = 512.0 * EncodingBytes(encoding) / (1024.0 * 1024.0);
   if (index_mb + 64 * brick_mb > max_memory_mb)
     throw SettingError("--volume-res", "a " + std::to_string(resolution) + "^3 volume needs " +
                                            std::to_string(int(index_mb)) + " MiB for its brick index alone, more than the " +
@@ -36,46 +53,57 @@ Volume::Volume(const VolumeOptions& o) : o_(o) {
   index_.assign(std::size_t(nb_) * nb_ * nb_, -1);
   nc_ = (nb_ + 3) / 4;
   coarse_.assign(std::size_t(nc_) * nc_ * nc_, 0);
-  const double brick_bytes = 512.0 * sizeof(Voxel);
+  const double brick_bytes = 512.0 * EncodingBytes(o_.encoding);
   max_bricks_ = std::size_t(std::max(0.0, (o_.max_memory_mb * 1024 * 1024 - double(index_.size()) * 4) / brick_bytes));
 }
 
 std::size_t Volume::bytes() const {
-  return index_.size() * sizeof(int) + pool_.size() * sizeof(Voxel);
+  return index_.size() * sizeof(int) + pool_.size();
 }
 
-Voxel* Volume::Allocate(int bx, int by, int bz) {
+bool Volume::Allocate(int bx, int by, int bz) {
   int& slot = index_[BrickIndex(bx, by, bz)];
-  if (slot >= 0) return MutableBrick(slot);
+  if (slot >= 0) return true;
   if (brick_coord_.size() >= max_bricks_) {
     full_ = true;
-    return nullptr;
+    return false;
   }
   slot = int(brick_coord_.size());
   brick_coord_.push_back({bx, by, bz});
   coarse_[std::size_t(((bz >> 2) * nc_ + (by >> 2)) * nc_ + (bx >> 2))] = 1;
-  pool_.resize(pool_.size() + 512);
-  return MutableBrick(slot);
+  const std::size_t bytes = 512 * std::size_t(voxel_bytes());
+  pool_.resize(pool_.size() + bytes);
+  VisitEncoding(o_.encoding, [&](auto tag) {
+    using V = decltype(tag);
+    V* p = reinterpret_cast<V*>(pool_.data() + pool_.size() - bytes);
+    for (int i = 0; i < 512; ++i) p[i] = V{};
+  });
+  return true;
 }
 
-VolumeView Volume::view() const {
-  VolumeView v;
-  v.index = index_.data();
-  v.coarse = coarse_.data();
-  v.pool = const_cast<Voxel*>(pool_.data());  // the view is read-only for const callers
-  v.n = n_;
-  v.nb = nb_;
-  v.nc = nc_;
-  v.origin = origin_;
-  v.voxel_m = o_.voxel_m();
-  v.size_m = o_.size_m;
-  v.trunc_m = o_.truncation_m();
-  return v;
+bool Volume::Get(int x, int y, int z, Voxel* out) const {
+  return VisitEncoding(o_.encoding, [&](auto tag) {
+    const auto* v = view<decltype(tag)>().Get(x, y, z);
+    if (v) *out = v->Decode();
+    return v != nullptr;
+  });
+}
+bool Volume::BrickAllocated(int bx, int by, int bz) const {
+  return view<FullVoxel>().BrickAllocated(bx, by, bz);  // the index only
+}
+bool Volume::SampleTsdf(Float3 p, float* tsdf) const {
+  return VisitEncoding(o_.encoding, [&](auto tag) { return view<decltype(tag)>().SampleTsdf(p, tsdf); });
+}
+bool Volume::SampleRadiance(Float3 p, Float3* radiance, float* nr) const {
+  return VisitEncoding(o_.encoding, [&](auto tag) { return view<decltype(tag)>().SampleRadiance(p, radiance, nr); });
+}
+bool Volume::Gradient(Float3 p, Float3* n) const {
+  return VisitEncoding(o_.encoding, [&](auto tag) { return view<decltype(tag)>().Gradient(p, n); });
 }
 
-void Volume::Assign(std::vector<int> index, std::vector<Voxel> pool,
+void Volume::Assign(std::vector<int> index, std::vector<std::uint8_t> pool,
                     std::vector<std::array<int, 3>> coords, bool full) {
-  if (index.size() != index_.size() || pool.size() != coords.size() * 512)
+  if (index.size() != index_.size() || pool.size() != coords.size() * 512 * std::size_t(voxel_bytes()))
     throw Error("volume copy: inconsistent sizes");
   index_ = std::move(index);
   pool_ = std::move(pool);
@@ -135,17 +163,21 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   st.visible_bricks = todo.size();
   // 2. Update the voxels of those bricks.
   std::size_t updated = 0, rad_updates = 0;
+  VisitEncoding(o_.encoding, [&](auto tag) {
+    using V = decltype(tag);
+    V* pool = view<V>().pool;
 #pragma omp parallel for schedule(dynamic, 8) reduction(+ : updated, rad_updates)
-  for (long k = 0; k < long(todo.size()); ++k) {
-    const int b = todo[std::size_t(k)];
-    const auto bc = brick_coord_[std::size_t(b)];
-    Voxel* vox = MutableBrick(b);
-    for (int i = 0; i < 512; ++i) {
-      const int done = IntegrateVoxel(args, bc[0], bc[1], bc[2], i, vox[i]);
-      updated += done & 1;
-      rad_updates += (done >> 1) & 1;
+    for (long k = 0; k < long(todo.size()); ++k) {
+      const int b = todo[std::size_t(k)];
+      const auto bc = brick_coord_[std::size_t(b)];
+      V* vox = pool + std::size_t(b) * 512;
+      for (int i = 0; i < 512; ++i) {
+        const int done = IntegrateVoxel(args, bc[0], bc[1], bc[2], i, vox[i]);
+        updated += done & 1;
+        rad_updates += (done >> 1) & 1;
+      }
     }
-  }
+  });
   st.voxels_updated = updated;
   st.radiance_updates = rad_updates;
   return st;
@@ -161,17 +193,19 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, fl
   r.nr = Image<float>(w, h);
   r.depth = DepthImage(w, h);
   const RaycastArgs a{cam, ToRigidTransform(T_wc), near_m, far_m};
-  const VolumeView V = view();
+  VisitEncoding(o_.encoding, [&](auto tag) {
+    const VolumeView<decltype(tag)> V = view<decltype(tag)>();
 #pragma omp parallel for schedule(dynamic, 4)
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const RayHit hit = RaycastPixel(V, a, x, y);
-      r.vertex(x, y) = hit.vertex;
-      r.normal(x, y) = hit.normal;
-      r.radiance(x, y) = hit.radiance;
-      r.nr(x, y) = hit.nr;
-      r.depth(x, y) = hit.depth;
-    }
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const RayHit hit = RaycastPixel(V, a, x, y);
+        r.vertex(x, y) = hit.vertex;
+        r.normal(x, y) = hit.normal;
+        r.radiance(x, y) = hit.radiance;
+        r.nr(x, y) = hit.nr;
+        r.depth(x, y) = hit.depth;
+      }
+  });
   return r;
 }
 

@@ -16,6 +16,10 @@
 
 namespace hdrf::volume {
 
+// "full", "no-nr", "compact" (throws SettingError naming --voxel otherwise).
+VoxelEncoding ParseVoxelEncoding(const std::string& s);
+const char* VoxelEncodingName(VoxelEncoding e);
+
 struct VolumeOptions {
   int resolution = 256;          // voxels per side (a multiple of 8)
   float size_m = 6.0f;           // side of the cube, metres, centred on the first camera
@@ -25,6 +29,9 @@ struct VolumeOptions {
   float tau0 = 0.1f;             // radiance fused only where the largest channel PCF > tau0
   float tau1_deg = 75;           // ... and the angle between normal and view ray < tau1
   double max_memory_mb = 4096;   // voxel memory the volume may use
+  // Voxel storage (volume_impl.h, --voxel): compact by default, as accurate as full on the
+  // engine's tests at 12 instead of 28 bytes (docs/benchmarks.md).
+  VoxelEncoding encoding = VoxelEncoding::kCompact;
   void Check() const;            // throws SettingError naming --volume-res / --volume-size
   float voxel_m() const { return size_m / float(resolution); }
   float truncation_m() const { return truncation_voxels * voxel_m(); }
@@ -41,20 +48,34 @@ class Volume {
   std::size_t bytes() const;
   bool full() const { return full_; }  // allocation stopped at max_memory_mb
 
-  // Voxel at integer coordinates, or nullptr where unallocated / outside.
-  const Voxel* Get(int x, int y, int z) const { return view().Get(x, y, z); }
-  bool BrickAllocated(int bx, int by, int bz) const { return view().BrickAllocated(bx, by, bz); }
+  // Decoded voxel at integer coordinates; false where unallocated / outside.
+  bool Get(int x, int y, int z, Voxel* out) const;
+  bool BrickAllocated(int bx, int by, int bz) const;
   // Trilinear TSDF at a world point (voxel-centre grid); false where the observed corners
   // carry less than half of the weight.
-  bool SampleTsdf(Float3 p, float* tsdf) const { return view().SampleTsdf(p, tsdf); }
+  bool SampleTsdf(Float3 p, float* tsdf) const;
   // Trilinear radiance and NR over corners with radiance weight; false if none has any.
-  bool SampleRadiance(Float3 p, Float3* radiance, float* nr) const {
-    return view().SampleRadiance(p, radiance, nr);
-  }
+  bool SampleRadiance(Float3 p, Float3* radiance, float* nr) const;
   // Normal from the TSDF gradient; false where undefined.
-  bool Gradient(Float3 p, Float3* n) const { return view().Gradient(p, n); }
-  // The arrays and geometry for the per-element functions of volume_impl.h.
-  VolumeView view() const;
+  bool Gradient(Float3 p, Float3* n) const;
+  // The arrays and geometry for the per-element functions of volume_impl.h; V must be the
+  // options' encoding.
+  template <typename V>
+  VolumeView<V> view() const {
+    VolumeView<V> v;
+    v.index = index_.data();
+    v.coarse = coarse_.data();
+    v.pool = reinterpret_cast<V*>(const_cast<std::uint8_t*>(pool_.data()));
+    v.n = n_;
+    v.nb = nb_;
+    v.nc = nc_;
+    v.origin = origin_;
+    v.voxel_m = o_.voxel_m();
+    v.size_m = o_.size_m;
+    v.trunc_m = o_.truncation_m();
+    return v;
+  }
+  int voxel_bytes() const { return EncodingBytes(o_.encoding); }
 
   // Integration of one frame (see integrate.cpp).
   struct FrameInput {
@@ -91,8 +112,8 @@ class Volume {
   // index (nb^3), the voxel pool (512 per brick, in slot order), each slot's brick
   // coordinates, and whether allocation had stopped at the memory limit.
   const std::vector<int>& brick_index() const { return index_; }
-  const std::vector<Voxel>& pool() const { return pool_; }
-  void Assign(std::vector<int> index, std::vector<Voxel> pool,
+  const std::vector<std::uint8_t>& pool() const { return pool_; }  // encoded voxels
+  void Assign(std::vector<int> index, std::vector<std::uint8_t> pool,
               std::vector<std::array<int, 3>> brick_coords, bool full);
   // Integration and ray casting argument blocks shared with the CUDA backend.
   // (the caller sets the image views).
@@ -102,8 +123,7 @@ class Volume {
 
  private:
   int BrickIndex(int bx, int by, int bz) const { return (bz * nb_ + by) * nb_ + bx; }
-  Voxel* Allocate(int bx, int by, int bz);
-  Voxel* MutableBrick(int b) { return &pool_[std::size_t(b) * 512]; }
+  bool Allocate(int bx, int by, int bz);
 
   VolumeOptions o_;
   int n_ = 0, nb_ = 0;
@@ -111,7 +131,7 @@ class Volume {
   std::vector<int> index_;
   std::vector<std::uint8_t> coarse_;  // per 4x4x4 bricks: any allocated (ray skipping)
   int nc_ = 0;
-  std::vector<Voxel> pool_;
+  std::vector<std::uint8_t> pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
   std::size_t max_bricks_ = 0;
   bool full_ = false;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "common/camera.h"
 #include "common/host_device.h"
@@ -12,21 +13,144 @@
 
 namespace hdrf::volume {
 
+// The values of one voxel, decoded (and the layout of the full encoding).
 struct Voxel {
   float tsdf = 1;                 // signed distance / truncation, in [-1, 1]
   float w = 0;                    // TSDF weight
   Float3 radiance{0, 0, 0};       // HDR radiance, model units
-  float nr = 0;                   // normalized radiance
+  float nr = 0;                   // normalized radiance (0 where the encoding has none)
   float wr = 0;                   // radiance weight
 };
 
+// How voxels are stored (ARCHITECTURE: the paper names memory as its main limitation):
+//   kFull     28 B: the values above as floats;
+//   kNoNr     24 B: floats, no normalized radiance: the tracker takes NR of the ray-cast
+//                   radiance instead (the paper's suggestion);
+//   kCompact  12 B: TSDF as snorm16, weights as unsigned 1/1000 fixed point, radiance as
+//                   IEEE half floats, no NR.
+enum class VoxelEncoding { kFull, kNoNr, kCompact };
+
+// IEEE half <-> float in plain integer arithmetic (round to nearest even), so that the CPU
+// and the GPU store exactly the same bits.
+HDRF_HD std::uint16_t FloatToHalf(float f) {
+  std::uint32_t x;
+  memcpy(&x, &f, 4);
+  const std::uint32_t sign = (x >> 16) & 0x8000u, a = x & 0x7fffffffu;
+  if (a >= 0x7f800000u) return std::uint16_t(sign | (a > 0x7f800000u ? 0x7e00u : 0x7c00u));
+  if (a >= 0x477ff000u) return std::uint16_t(sign | 0x7c00u);  // rounds past 65504: infinity
+  if (a < 0x38800000u) {                                     // below 2^-14: subnormal or zero
+    if (a < 0x33000000u) return std::uint16_t(sign);
+    const std::uint32_t e = a >> 23, m = (a & 0x7fffffu) | 0x800000u, shift = 126u - e;
+    std::uint32_t h = m >> shift;
+    const std::uint32_t rem = m & ((1u << shift) - 1u), half = 1u << (shift - 1u);
+    if (rem > half || (rem == half && (h & 1u))) ++h;
+    return std::uint16_t(sign | h);
+  }
+  std::uint32_t h = ((((a >> 23) - 112u) << 10) | ((a & 0x7fffffu) >> 13));
+  const std::uint32_t rem = a & 0x1fffu;
+  if (rem > 0x1000u || (rem == 0x1000u && (h & 1u))) ++h;  // a carry rolls into the exponent
+  return std::uint16_t(sign | h);
+}
+HDRF_HD float HalfToFloat(std::uint16_t h) {
+  const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
+  std::uint32_t x;
+  if (e == 0) {
+    if (m == 0) {
+      x = sign;
+    } else {  // subnormal: m * 2^-24
+      const float v = float(m) * (1.0f / 16777216.0f);
+      memcpy(&x, &v, 4);
+      x |= sign;
+    }
+  } else if (e == 31) {
+    x = sign | 0x7f800000u | (m << 13);
+  } else {
+    x = sign | ((e + 112u) << 23) | (m << 13);
+  }
+  float f;
+  memcpy(&f, &x, 4);
+  return f;
+}
+
+struct FullVoxel {
+  Voxel v;
+  static constexpr bool kStoresNr = true;
+  HDRF_HD float Tsdf() const { return v.tsdf; }
+  HDRF_HD float W() const { return v.w; }
+  HDRF_HD float Wr() const { return v.wr; }
+  HDRF_HD Float3 Radiance() const { return v.radiance; }
+  HDRF_HD float Nr() const { return v.nr; }
+  HDRF_HD Voxel Decode() const { return v; }
+  HDRF_HD void Store(const Voxel& x) { v = x; }
+};
+struct NoNrVoxel {
+  float tsdf = 1, w = 0;
+  Float3 radiance{0, 0, 0};
+  float wr = 0;
+  static constexpr bool kStoresNr = false;
+  HDRF_HD float Tsdf() const { return tsdf; }
+  HDRF_HD float W() const { return w; }
+  HDRF_HD float Wr() const { return wr; }
+  HDRF_HD Float3 Radiance() const { return radiance; }
+  HDRF_HD float Nr() const { return 0.f; }
+  HDRF_HD Voxel Decode() const { return {tsdf, w, radiance, 0.f, wr}; }
+  HDRF_HD void Store(const Voxel& x) {
+    tsdf = x.tsdf;
+    w = x.w;
+    radiance = x.radiance;
+    wr = x.wr;
+  }
+};
+struct CompactVoxel {
+  std::int16_t tsdf = 32767;
+  std::uint16_t w = 0, r = 0, g = 0, b = 0, wr = 0;
+  static constexpr bool kStoresNr = false;
+  static constexpr float kWeightStep = 1e-3f;  // weights up to 65.5 (caps are checked)
+  HDRF_HD static std::uint16_t Weight(float x) {
+    const float q = x / kWeightStep + 0.5f;
+    return std::uint16_t(q >= 65535.f ? 65535.f : (q < 0.f ? 0.f : q));
+  }
+  HDRF_HD float Tsdf() const { return float(tsdf) * (1.f / 32767.f); }
+  HDRF_HD float W() const { return float(w) * kWeightStep; }
+  HDRF_HD float Wr() const { return float(wr) * kWeightStep; }
+  HDRF_HD Float3 Radiance() const { return {HalfToFloat(r), HalfToFloat(g), HalfToFloat(b)}; }
+  HDRF_HD float Nr() const { return 0.f; }
+  HDRF_HD Voxel Decode() const { return {Tsdf(), W(), Radiance(), 0.f, Wr()}; }
+  HDRF_HD void Store(const Voxel& x) {
+    const float t = x.tsdf > 1.f ? 1.f : (x.tsdf < -1.f ? -1.f : x.tsdf);
+    tsdf = std::int16_t(lroundf(t * 32767.f));
+    w = Weight(x.w);
+    r = FloatToHalf(x.radiance.x);
+    g = FloatToHalf(x.radiance.y);
+    b = FloatToHalf(x.radiance.z);
+    wr = Weight(x.wr);
+  }
+};
+
+inline constexpr int EncodingBytes(VoxelEncoding e) {
+  return e == VoxelEncoding::kCompact ? int(sizeof(CompactVoxel))
+                                      : (e == VoxelEncoding::kNoNr ? int(sizeof(NoNrVoxel)) : int(sizeof(FullVoxel)));
+}
+inline constexpr bool EncodingStoresNr(VoxelEncoding e) { return e == VoxelEncoding::kFull; }
+
+// Calls f(V{}) with the encoding's type (host code).
+template <typename F>
+decltype(auto) VisitEncoding(VoxelEncoding e, F&& f) {
+  switch (e) {
+    case VoxelEncoding::kNoNr: return f(NoNrVoxel{});
+    case VoxelEncoding::kCompact: return f(CompactVoxel{});
+    default: return f(FullVoxel{});
+  }
+}
+
 inline constexpr int kBrick = 8;
 
-// The volume's arrays and geometry, wherever they live.
+// The volume's arrays and geometry, wherever they live, for voxel encoding V.
+template <typename V>
 struct VolumeView {
   const int* index = nullptr;            // nb^3 brick slots, -1 = unallocated
   const std::uint8_t* coarse = nullptr;  // nc^3: any brick allocated in this 4x4x4 group
-  Voxel* pool = nullptr;                 // 512 voxels per allocated brick
+  V* pool = nullptr;                     // 512 voxels per allocated brick
   int n = 0, nb = 0, nc = 0;             // voxels, bricks and coarse cells per side
   Float3 origin{0, 0, 0};                // world position of voxel (0,0,0)'s corner
   float voxel_m = 0, size_m = 0, trunc_m = 0;
@@ -35,7 +159,7 @@ struct VolumeView {
   HDRF_HD bool BrickAllocated(int bx, int by, int bz) const {
     return bx >= 0 && by >= 0 && bz >= 0 && bx < nb && by < nb && bz < nb && index[BrickIndex(bx, by, bz)] >= 0;
   }
-  HDRF_HD const Voxel* Get(int x, int y, int z) const {
+  HDRF_HD const V* Get(int x, int y, int z) const {
     if (x < 0 || y < 0 || z < 0 || x >= n || y >= n || z >= n) return nullptr;
     const int b = index[BrickIndex(x >> 3, y >> 3, z >> 3)];
     return b < 0 ? nullptr : &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
@@ -55,22 +179,22 @@ struct VolumeView {
       // Fast path: all eight corners in one brick.
       const int b = index[BrickIndex(x >> 3, y >> 3, z >> 3)];
       if (b < 0) return false;
-      const Voxel* base = &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
+      const V* base = &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
       for (int k = 0; k < 8; ++k) {
         const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const Voxel& v = base[dz * 64 + dy * 8 + dx];
-        if (v.w <= 0.f) continue;
+        const V& v = base[dz * 64 + dy * 8 + dx];
+        if (v.W() <= 0.f) continue;
         const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        acc += w * v.tsdf;
+        acc += w * v.Tsdf();
         wsum += w;
       }
     } else {
       for (int k = 0; k < 8; ++k) {
         const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const Voxel* v = Get(x + dx, y + dy, z + dz);
-        if (!v || v->w <= 0.f) continue;
+        const V* v = Get(x + dx, y + dy, z + dz);
+        if (!v || v->W() <= 0.f) continue;
         const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        acc += w * v->tsdf;
+        acc += w * v->Tsdf();
         wsum += w;
       }
     }
@@ -88,11 +212,11 @@ struct VolumeView {
     float nn = 0.f, wsum = 0.f;
     for (int k = 0; k < 8; ++k) {
       const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const Voxel* v = Get(x + dx, y + dy, z + dz);
-      if (!v || v->wr <= 0.f) continue;
+      const V* v = Get(x + dx, y + dy, z + dz);
+      if (!v || v->Wr() <= 0.f) continue;
       const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-      r += v->radiance * w;
-      nn += v->nr * w;
+      r += v->Radiance() * w;
+      nn += v->Nr() * w;
       wsum += w;
     }
     if (wsum < 1e-3f) return false;
@@ -152,7 +276,8 @@ HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_w
 
 // Updates voxel i (0..511) of the brick at brick coordinates (bx, by, bz). Returns bit 0:
 // TSDF updated, bit 1: radiance updated.
-HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, Voxel& vx) {
+template <typename V>
+HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
   const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
   const float vs = a.voxel_m, trunc = a.trunc_m;
   const Float3 pw = a.origin + Float3{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs,
@@ -171,6 +296,7 @@ HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i
   const Float3 nrm = a.normals(u, v);
   const float cosv = fabsf(Dot(nrm, ray));
   const float wf = Length(nrm) > 0.f ? (cosv > 0.05f ? cosv : 0.05f) : 0.05f;
+  Voxel vx = stored.Decode();
   vx.tsdf = (vx.w * vx.tsdf + wf * f) / (vx.w + wf);
   vx.w = vx.w + wf < a.max_weight ? vx.w + wf : a.max_weight;
   int done = 1;
@@ -179,11 +305,12 @@ HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i
     if (wr > 0.f) {
       const Float3 live = a.radiance(u, v) * a.radiance_scale;
       vx.radiance = (vx.radiance * vx.wr + live * wr) / (vx.wr + wr);
-      vx.nr = (vx.nr * vx.wr + a.nr(u, v) * wr) / (vx.wr + wr);
+      if constexpr (V::kStoresNr) vx.nr = (vx.nr * vx.wr + a.nr(u, v) * wr) / (vx.wr + wr);
       vx.wr = vx.wr + wr < a.max_radiance_weight ? vx.wr + wr : a.max_radiance_weight;
       done |= 2;
     }
   }
+  stored.Store(vx);
   return done;
 }
 
@@ -200,7 +327,8 @@ struct RayHit {
 
 // The first zero crossing (front face) of the TSDF along the ray of pixel (x, y), skipping
 // empty 4x4x4-brick groups and empty bricks; a zero hit where the ray met nothing.
-HDRF_HD RayHit RaycastPixel(const VolumeView& V, const RaycastArgs& a, int x, int y) {
+template <typename Enc>
+HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
   RayHit hit;
   const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
   const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));

@@ -87,7 +87,9 @@ TEST(GpuEngine, CudaRequestFallsBackToTheCpuWithAReasonWhereNoGpu) {
   }
 }
 
-TEST(GpuParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
+class GpuStageParity : public ::testing::TestWithParam<volume::VoxelEncoding> {};
+
+TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
   std::string why;
   if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
   const int w = 320, h = 240;
@@ -95,6 +97,9 @@ TEST(GpuParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
   const SensorInfo s = Sensor(w, h);
   PipelineOptions o;
   o.volume.resolution = 256;
+  o.volume.encoding = GetParam();
+  std::printf("voxel encoding %s: %d bytes\n", volume::VoxelEncodingName(o.volume.encoding),
+              volume::EncodingBytes(o.volume.encoding));
   Pipeline cpu(o, s.camera, s);
   o.device = Device::kCuda;
   Pipeline gpu(o, s.camera, s);
@@ -146,18 +151,18 @@ TEST(GpuParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     for (const auto& bc : vc.bricks())
       for (int i = 0; i < 512; ++i) {
         const int x = bc[0] * 8 + (i & 7), y = bc[1] * 8 + ((i >> 3) & 7), z = bc[2] * 8 + (i >> 6);
-        const volume::Voxel* p = vc.Get(x, y, z);
-        const volume::Voxel* q = vg.Get(x, y, z);
-        if (!q) {
+        volume::Voxel p, q;
+        vc.Get(x, y, z, &p);
+        if (!vg.Get(x, y, z, &q)) {
           ++missing;
           continue;
         }
-        tsdf = std::max(tsdf, double(std::abs(p->tsdf - q->tsdf)));
-        weight = std::max(weight, double(std::abs(p->w - q->w)));
-        rad = std::max(rad, double(MaxComponent({std::abs(p->radiance.x - q->radiance.x),
-                                                 std::abs(p->radiance.y - q->radiance.y),
-                                                 std::abs(p->radiance.z - q->radiance.z)})));
-        rad_scale = std::max(rad_scale, double(MaxComponent(p->radiance)));
+        tsdf = std::max(tsdf, double(std::abs(p.tsdf - q.tsdf)));
+        weight = std::max(weight, double(std::abs(p.w - q.w)));
+        rad = std::max(rad, double(MaxComponent({std::abs(p.radiance.x - q.radiance.x),
+                                                 std::abs(p.radiance.y - q.radiance.y),
+                                                 std::abs(p.radiance.z - q.radiance.z)})));
+        rad_scale = std::max(rad_scale, double(MaxComponent(p.radiance)));
       }
     std::printf("  volume: %zu bricks, max |tsdf| diff %.2g, weight %.2g, radiance %.2g (relative)\n",
                 vc.allocated_bricks(), tsdf, weight, rad / rad_scale);
@@ -184,6 +189,16 @@ TEST(GpuParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Encodings, GpuStageParity,
+                         ::testing::Values(volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr,
+                                           volume::VoxelEncoding::kCompact),
+                         [](const ::testing::TestParamInfo<volume::VoxelEncoding>& i) {
+                           std::string n = volume::VoxelEncodingName(i.param);
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
 
 TEST(GpuParity, HundredFrameScanTrajectoriesAgree) {
   std::string why;
