@@ -1,6 +1,6 @@
 // hdrfusion-bench: the engine benchmark with nothing but the core (for core-only builds such
 // as the GPU machine's). `hdrfusion bench --suite engine` prints the same table.
-//   hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]...
+//   hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel E|all]
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,6 +26,18 @@ int main(int argc, char** argv) {
       else if (d == "cuda") o.devices = {Device::kCuda};
       else if (d == "both") o.devices = {Device::kCpu, Device::kCuda};
       else { std::fprintf(stderr, "hdrfusion-bench: --device must be cpu, cuda or both, not '%s'\n", d.c_str()); return 2; }
+    } else if (a == "--voxel" && has_value) {
+      const std::string v = argv[++i];
+      if (v == "all") {
+        o.encodings = {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact};
+      } else {
+        try {
+          o.encodings = {volume::ParseVoxelEncoding(v)};
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "hdrfusion-bench: %s\n", e.what());
+          return 2;
+        }
+      }
     } else if (a == "--case" && has_value) {
       pipeline::BenchCase c{};
       if (std::sscanf(argv[++i], "%dx%dx%d", &c.width, &c.height, &c.resolution) != 3) {
@@ -36,7 +48,7 @@ int main(int argc, char** argv) {
       custom_cases = true;
       o.cases.push_back(c);
     } else {
-      std::fprintf(stderr, "usage: hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]...\n");
+      std::fprintf(stderr, "usage: hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel full|no-nr|compact|all]\n");
       return a == "--help" ? 0 : 2;
     }
   }

@@ -152,7 +152,7 @@ Command AddScanCommand(CLI::App& app) {
     // Outputs: everything built so far.
     io::WriteTrajectory(out / "trajectory.txt", trajectory);
     std::fprintf(stderr, "scan: extracting the mesh...\n");
-    const mesh::Mesh m = mesh::ExtractMesh(pipe.volume());
+    const mesh::Mesh m = pipe.ExtractMesh();
     io::WritePly(out / "mesh.ply", m);
     WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose());
     WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity());

@@ -69,10 +69,14 @@ HDRF_HD void NrColumnPass(NrIntegrals in, int x) {
   in.cnt(x, 0) = 0;
   in.s1(x, 0) = 0;
   in.s2(x, 0) = 0;
+  double c = 0, a = 0, b = 0;
   for (int y = 1; y < in.cnt.height; ++y) {
-    in.cnt(x, y) += in.cnt(x, y - 1);
-    in.s1(x, y) += in.s1(x, y - 1);
-    in.s2(x, y) += in.s2(x, y - 1);
+    c += in.cnt(x, y);
+    a += in.s1(x, y);
+    b += in.s2(x, y);
+    in.cnt(x, y) = c;
+    in.s1(x, y) = a;
+    in.s2(x, y) = b;
   }
 }
 // 3. Local mean and std over the patch (radius r cells) around cell (x, y); 0 where fewer

@@ -11,6 +11,7 @@
 #include "common/image.h"
 #include "common/se3.h"
 #include "imaging/imaging.h"
+#include "mesh/mesh.h"
 #include "tracking/tracking.h"
 #include "volume/volume.h"
 
@@ -68,6 +69,8 @@ class Backend {
   // Host copies for reports, tests and export.
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;
   virtual const volume::Volume& HostVolume() = 0;
+  // The model's surface (marching tetrahedra, mesh_impl.h), extracted where the model lives.
+  virtual mesh::Mesh ExtractMesh() = 0;
   virtual FrameImages Download() = 0;
 };
 

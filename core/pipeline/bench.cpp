@@ -23,15 +23,18 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
     std::vector<FrameInput> frames(static_cast<std::size_t>(src.size()));
     for (auto& f : frames) src.Next(f);  // rendered first, not timed
     const Pose T0inv = frames[0].T_world_camera_true->inverse();
-    for (Device dev : o.devices) {
+    for (Device dev : o.devices)
+    for (volume::VoxelEncoding enc : o.encodings) {
       if (dev == Device::kCuda && !CudaAvailable()) continue;
       const std::size_t mem0 = dev == Device::kCuda ? CudaMemoryUsed() : 0;
       PipelineOptions po;
       po.volume.resolution = c.resolution;
       po.tracker.kind = o.tracker;
       po.device = dev;
+      po.volume.encoding = enc;
       EngineBenchRow row;
       row.device = dev;
+      row.encoding = enc;
       row.c = c;
       double se = 0, visible = 0;
       {
@@ -65,6 +68,9 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
         row.bytes_per_voxel = row.bricks ? bytes / (double(row.bricks) * 512.0) : 0;
         if (dev == Device::kCuda) row.gpu_mib = double(CudaMemoryUsed() - mem0) / (1024.0 * 1024.0);
         row.ate_cm = 100.0 * std::sqrt(se / double(frames.size()));
+        const auto m0 = std::chrono::steady_clock::now();
+        row.triangles = pipe.ExtractMesh().triangles.size();
+        row.mesh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count();
       }
       if (progress) progress(row);
       rows.push_back(row);
@@ -75,18 +81,19 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
 
 std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows) {
   std::string out =
-      "| device | size | volume | convert | normalize | track | compensate | integrate | raycast | "
-      "ms/frame | frames/s | bricks (visible/frame) | volume MiB | bytes/voxel | GPU MiB | ATE cm |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| device | voxel | size | volume | convert | normalize | track | compensate | integrate | raycast | "
+      "ms/frame | frames/s | bricks (visible/frame) | volume MiB | bytes/voxel | GPU MiB | ATE cm | mesh ms (triangles) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   char line[512];
   for (const auto& r : rows) {
     std::snprintf(line, sizeof line,
-                  "| %s | %dx%d | %d^3 | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu (%.0f) | %.0f | "
-                  "%.1f | %s | %.2f |\n",
-                  DeviceName(r.device), r.c.width, r.c.height, r.c.resolution, r.ms.convert, r.ms.normalize,
+                  "| %s | %s | %dx%d | %d^3 | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu (%.0f) | %.1f | "
+                  "%.1f | %s | %.2f | %.1f (%zu) |\n",
+                  DeviceName(r.device), volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.c.resolution, r.ms.convert, r.ms.normalize,
                   r.ms.track, r.ms.compensate, r.ms.integrate, r.ms.raycast, r.wall_ms, r.fps, r.bricks,
                   r.visible_bricks, r.volume_mib, r.bytes_per_voxel,
-                  r.device == Device::kCuda ? std::to_string(int(std::lround(r.gpu_mib))).c_str() : "-", r.ate_cm);
+                  r.device == Device::kCuda ? std::to_string(int(std::lround(r.gpu_mib))).c_str() : "-", r.ate_cm,
+                  r.mesh_ms, r.triangles);
     out += line;
   }
   return out;

@@ -21,11 +21,13 @@ struct EngineBenchOptions {
   std::vector<Device> devices = {Device::kCpu};
   std::vector<BenchCase> cases = {{320, 240, 256}, {640, 480, 512}};
   tracking::TrackerKind tracker = tracking::TrackerKind::kNrIcp;
+  std::vector<volume::VoxelEncoding> encodings = {volume::VoxelEncoding::kCompact};
 };
 
 struct EngineBenchRow {
   Device device = Device::kCpu;
   BenchCase c{};
+  volume::VoxelEncoding encoding = volume::VoxelEncoding::kCompact;
   StageTimes ms;                   // mean per frame
   double wall_ms = 0;              // mean wall time per frame, end to end
   double fps = 0;                  // 1000 / wall_ms
@@ -35,6 +37,8 @@ struct EngineBenchRow {
   double bytes_per_voxel = 0;      // volume bytes / allocated voxels
   double gpu_mib = 0;              // GPU memory taken by the pipeline (CUDA rows)
   double ate_cm = 0;               // RMS error of the trajectory against the truth
+  double mesh_ms = 0;              // surface extraction of the final model, once
+  std::size_t triangles = 0;
   int lost = 0;
 };
 

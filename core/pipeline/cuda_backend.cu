@@ -5,6 +5,7 @@
 // estimate and the count of new bricks; nothing else crosses the bus.
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
+#include <cub/device/device_select.cuh>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "common/cuda_check.h"
 #include "common/device_buffer.h"
 #include "imaging/imaging_impl.h"
+#include "mesh/mesh_impl.h"
 #include "pipeline/backend.h"
 #include "pipeline/pipeline.h"
 #include "tracking/tracking_impl.h"
@@ -51,7 +53,8 @@ void ForEachIndex(int n, F f) {
 // reduce by shuffles, the block writes one partial; a second kernel adds the partials in a
 // fixed order (deterministic, no atomics).
 template <typename Acc, typename F>
-__global__ void __launch_bounds__(kReduceThreads) SumKernel(int w, int h, F f, double* partial) {
+__global__ void __launch_bounds__(kReduceThreads)
+    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   Acc acc;
   const int n = w * h;
@@ -70,13 +73,20 @@ __global__ void __launch_bounds__(kReduceThreads) SumKernel(int w, int h, F f, d
     for (int wi = 0; wi < kReduceThreads / 32; ++wi) s += sh[wi][threadIdx.x];
     partial[blockIdx.x * K + threadIdx.x] = s;
   }
-}
-template <int K>
-__global__ void FinalSumKernel(const double* partial, int blocks, double* out) {
-  if (threadIdx.x >= K) return;
-  double s = 0;
-  for (int b = 0; b < blocks; ++b) s += partial[b * K + threadIdx.x];
-  out[threadIdx.x] = s;
+  // The last block to finish adds the partials, in block order (the same sum every run).
+  __shared__ bool last;
+  __threadfence();
+  __syncthreads();
+  if (threadIdx.x == 0) last = atomicAdd(done, 1u) == gridDim.x - 1;
+  __syncthreads();
+  if (!last) return;
+  __threadfence();
+  if (threadIdx.x < K) {
+    double s = 0;
+    for (int b = 0; b < int(gridDim.x); ++b) s += static_cast<volatile double*>(partial)[b * K + threadIdx.x];
+    out[threadIdx.x] = s;
+  }
+  if (threadIdx.x == 0) *done = 0;  // ready for the next reduction
 }
 
 struct Count1 {
@@ -116,6 +126,9 @@ void CopyD2D(DeviceImage<T>& dst, const DeviceImage<T>& src) {
 class CudaBackend final : public Backend {
  public:
   explicit CudaBackend(const BackendSetup& s);
+  ~CudaBackend() override { cudaFreeHost(host_sums_); }
+  CudaBackend(const CudaBackend&) = delete;
+  CudaBackend& operator=(const CudaBackend&) = delete;
   void Convert(const ColorImage& color, const DepthImage& depth_m) override;
   void Normalize(const ColorImage& color) override;
   void BuildLive() override;
@@ -138,6 +151,9 @@ class CudaBackend final : public Backend {
   void Synchronize() override { cuda::Synchronize(); }
   volume::Volume::Rendering Render(const Pose& T_world_camera) override;
   const volume::Volume& HostVolume() override;
+  mesh::Mesh ExtractMesh() override;
+  template <typename V>
+  mesh::Mesh ExtractMeshT();
   FrameImages Download() override;
 
   // Helpers (public: CUDA extended lambdas may not live in private members).
@@ -172,6 +188,8 @@ class CudaBackend final : public Backend {
   RenderD render_;
   // Reductions.
   DeviceBuffer<double> partial_, sums_;
+  DeviceBuffer<unsigned> done_;
+  double* host_sums_ = nullptr;  // pinned
   // Exposure estimate.
   DeviceBuffer<float> keys_, vals_, keys_sorted_, vals_sorted_;
   DeviceBuffer<double> cum_;
@@ -234,6 +252,9 @@ CudaBackend::CudaBackend(const BackendSetup& s)
   render_ = RenderD(w, h);
   partial_ = DeviceBuffer<double>(std::size_t(kReduceBlocks) * tracking::GnSystem::kSize);
   sums_ = DeviceBuffer<double>(tracking::GnSystem::kSize);
+  done_ = DeviceBuffer<unsigned>(1);
+  HDRF_CUDA_CHECK(cudaMemset(done_.data(), 0, sizeof(unsigned)));
+  HDRF_CUDA_CHECK(cudaMallocHost(&host_sums_, sizeof(double) * tracking::GnSystem::kSize));
   const std::size_t ns = std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2);
   keys_ = DeviceBuffer<float>(ns);
   vals_ = DeviceBuffer<float>(ns);
@@ -308,12 +329,12 @@ template <typename Acc, typename F>
 Acc CudaBackend::Sum(int w, int h, F f) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   const int blocks = std::max(1, std::min(kReduceBlocks, (w * h + kReduceThreads - 1) / kReduceThreads));
-  SumKernel<Acc><<<blocks, kReduceThreads>>>(w, h, f, partial_.data());
+  SumKernel<Acc><<<blocks, kReduceThreads>>>(w, h, f, partial_.data(), done_.data(), sums_.data());
   HDRF_CUDA_CHECK_LAUNCH();
-  FinalSumKernel<K><<<1, 64>>>(partial_.data(), blocks, sums_.data());
-  HDRF_CUDA_CHECK_LAUNCH();
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(host_sums_, sums_.data(), sizeof(double) * K, cudaMemcpyDeviceToHost, 0));
+  HDRF_CUDA_CHECK(cudaStreamSynchronize(0));
   Acc out;
-  HDRF_CUDA_CHECK(cudaMemcpy(out.v, sums_.data(), sizeof(double) * K, cudaMemcpyDeviceToHost));
+  for (int k = 0; k < K; ++k) out.v[k] = host_sums_[k];
   return out;
 }
 
@@ -665,6 +686,101 @@ FrameImages CudaBackend::Download() {
   f.render = {render_.vertex.ToHost(), render_.normal.ToHost(), render_.radiance.ToHost(), render_.nr.ToHost(),
               render_.depth.ToHost()};
   return f;
+}
+
+mesh::Mesh CudaBackend::ExtractMesh() {
+  switch (o_.volume.encoding) {
+    case volume::VoxelEncoding::kNoNr: return ExtractMeshT<volume::NoNrVoxel>();
+    case volume::VoxelEncoding::kCompact: return ExtractMeshT<volume::CompactVoxel>();
+    default: return ExtractMeshT<volume::FullVoxel>();
+  }
+}
+
+template <typename V>
+mesh::Mesh CudaBackend::ExtractMeshT() {
+  mesh::Mesh m;
+  const int cubes = allocated_ * 512;
+  if (cubes == 0) return m;
+  const volume::VolumeView<V> view = DeviceView<V>();
+  const BrickCoord* coords = coords_.data();
+  // 1. Triangles per cube, their offsets, then the triangles as edge keys in cube order.
+  DeviceBuffer<int> count{static_cast<std::size_t>(cubes) + 1}, offset{static_cast<std::size_t>(cubes) + 1};
+  int* cnt = count.data();
+  ForEachIndex(cubes + 1, [=] __device__(int c) {
+    if (c == cubes) {
+      cnt[c] = 0;
+      return;
+    }
+    const BrickCoord b = coords[c / 512];
+    const int i = c % 512;
+    std::uint64_t t[mesh::kMaxCubeTriangles][3];
+    cnt[c] = mesh::CubeTriangles(view, b.x * 8 + (i & 7), b.y * 8 + ((i >> 3) & 7), b.z * 8 + (i >> 6), t);
+  });
+  std::size_t bytes = 0;
+  HDRF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, cnt, offset.data(), cubes + 1));
+  DeviceBuffer<std::uint8_t> temp{std::max<std::size_t>(bytes, 16)};
+  HDRF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.data(), bytes, cnt, offset.data(), cubes + 1));
+  int n_tri = 0;
+  HDRF_CUDA_CHECK(cudaMemcpy(&n_tri, offset.data() + cubes, sizeof(int), cudaMemcpyDeviceToHost));
+  if (n_tri == 0) return m;
+  const int n_keys = 3 * n_tri;
+  DeviceBuffer<std::uint64_t> tri_keys{static_cast<std::size_t>(n_keys)}, sorted{static_cast<std::size_t>(n_keys)};
+  std::uint64_t* tk = tri_keys.data();
+  const int* off = offset.data();
+  ForEachIndex(cubes, [=] __device__(int c) {
+    if (cnt[c] == 0) return;
+    const BrickCoord b = coords[c / 512];
+    const int i = c % 512;
+    std::uint64_t t[mesh::kMaxCubeTriangles][3];
+    const int nt = mesh::CubeTriangles(view, b.x * 8 + (i & 7), b.y * 8 + ((i >> 3) & 7), b.z * 8 + (i >> 6), t);
+    for (int k = 0; k < nt; ++k)
+      for (int j = 0; j < 3; ++j) tk[3 * (off[c] + k) + j] = t[k][j];
+  });
+  // 2. Distinct edges in key order: the vertices.
+  bytes = 0;
+  HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, bytes, tk, sorted.data(), n_keys));
+  DeviceBuffer<std::uint64_t> unique{static_cast<std::size_t>(n_keys)};
+  DeviceBuffer<int> n_unique{1};
+  std::size_t bytes2 = 0;
+  HDRF_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, bytes2, sorted.data(), unique.data(), n_unique.data(), n_keys));
+  temp = DeviceBuffer<std::uint8_t>{std::max({bytes, bytes2, std::size_t(16)})};
+  bytes = temp.size();
+  HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(temp.data(), bytes, tk, sorted.data(), n_keys));
+  bytes = temp.size();
+  HDRF_CUDA_CHECK(cub::DeviceSelect::Unique(temp.data(), bytes, sorted.data(), unique.data(), n_unique.data(), n_keys));
+  int nv = 0;
+  HDRF_CUDA_CHECK(cudaMemcpy(&nv, n_unique.data(), sizeof(int), cudaMemcpyDeviceToHost));
+  DeviceBuffer<Float3> pos{static_cast<std::size_t>(nv)}, nrm{static_cast<std::size_t>(nv)}, rad{static_cast<std::size_t>(nv)};
+  const std::uint64_t* uk = unique.data();
+  Float3 *pp = pos.data(), *pn = nrm.data(), *pr = rad.data();
+  ForEachIndex(nv, [=] __device__(int i) { mesh::EdgeVertex(view, uk[i], &pp[i], &pn[i], &pr[i]); });
+  // 3. Triangles as vertex indices (binary search of their keys), facing the free space.
+  DeviceBuffer<std::int32_t> tris{static_cast<std::size_t>(n_keys)};
+  std::int32_t* tr = tris.data();
+  ForEachIndex(n_tri, [=] __device__(int t) {
+    std::int32_t idx[3];
+    for (int j = 0; j < 3; ++j) {
+      const std::uint64_t key = tk[3 * t + j];
+      int lo = 0, hi = nv;
+      while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (uk[mid] < key) lo = mid + 1;
+        else hi = mid;
+      }
+      idx[j] = lo;
+    }
+    mesh::OrientTriangle(pp, pn, idx);
+    for (int j = 0; j < 3; ++j) tr[3 * t + j] = idx[j];
+  });
+  m.position.resize(std::size_t(nv));
+  m.normal.resize(std::size_t(nv));
+  m.radiance.resize(std::size_t(nv));
+  m.triangles.resize(std::size_t(n_tri));
+  pos.Download(m.position.data());
+  nrm.Download(m.normal.data());
+  rad.Download(m.radiance.data());
+  cuda::CopyDeviceToHost(m.triangles.data(), tr, std::size_t(n_keys) * sizeof(std::int32_t));
+  return m;
 }
 
 const volume::Volume& CudaBackend::HostVolume() {

@@ -113,6 +113,7 @@ class CpuBackend final : public Backend {
     return r;
   }
   const volume::Volume& HostVolume() override { return volume_; }
+  mesh::Mesh ExtractMesh() override { return mesh::ExtractMesh(volume_); }
   FrameImages Download() override {
     FrameImages f;
     f.radiance = radiance_.Clone();
@@ -208,6 +209,7 @@ Pipeline::~Pipeline() = default;
 
 volume::Volume::Rendering Pipeline::Render(const Pose& T) const { return backend_->Render(T); }
 const volume::Volume& Pipeline::volume() const { return backend_->HostVolume(); }
+mesh::Mesh Pipeline::ExtractMesh() const { return backend_->ExtractMesh(); }
 std::size_t Pipeline::volume_bytes() const { return backend_->VolumeBytes(); }
 Backend& Pipeline::backend() const { return *backend_; }
 

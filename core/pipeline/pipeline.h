@@ -12,6 +12,7 @@
 #include "common/image.h"
 #include "common/se3.h"
 #include "imaging/imaging.h"
+#include "mesh/mesh.h"
 #include "radiometry/pcf.h"
 #include "radiometry/sensor.h"
 #include "tracking/tracking.h"
@@ -66,7 +67,8 @@ class Pipeline {
 
   // The model (a host copy, refreshed on each call after new frames, on the CUDA backend).
   const volume::Volume& volume() const;
-  std::size_t volume_bytes() const;  // voxel pool + brick index, where the model lives
+  std::size_t volume_bytes() const;
+  mesh::Mesh ExtractMesh() const;  // on the device the model lives on  // voxel pool + brick index, where the model lives
   const PipelineOptions& options() const { return o_; }
   Device device() const { return device_; }  // where the engine actually runs
   // Why the engine runs elsewhere than asked ("" when it runs where asked).

@@ -167,6 +167,21 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     std::printf("  volume: %zu bricks, max |tsdf| diff %.2g, weight %.2g, radiance %.2g (relative)\n",
                 vc.allocated_bricks(), tsdf, weight, rad / rad_scale);
     EXPECT_EQ(missing, 0);
+    // Surface extraction on each backend from its own (identical) volume.
+    const mesh::Mesh mc = cpu.ExtractMesh(), mg = gpu.ExtractMesh();
+    ASSERT_EQ(mc.position.size(), mg.position.size());
+    ASSERT_EQ(mc.triangles.size(), mg.triangles.size());
+    double mpos = 0, mnrm = 0;
+    long tri_diff = 0;
+    for (std::size_t i = 0; i < mc.position.size(); ++i) {
+      mpos = std::max(mpos, double(Length(mc.position[i] - mg.position[i])));
+      mnrm = std::max(mnrm, double(Length(mc.normal[i] - mg.normal[i])));
+    }
+    for (std::size_t i = 0; i < mc.triangles.size(); ++i) tri_diff += mc.triangles[i] != mg.triangles[i];
+    std::printf("  mesh: %zu vertices, %zu triangles; max position diff %.2g m, normal %.2g, %ld triangles differ\n",
+                mc.position.size(), mc.triangles.size(), mpos, mnrm, tri_diff);
+    EXPECT_LE(mpos, 1e-6);
+    EXPECT_EQ(tri_diff, 0);
     EXPECT_LE(tsdf, 1e-3);
     EXPECT_LE(weight, 1e-3);
     EXPECT_LE(rad / rad_scale, 1e-3);
