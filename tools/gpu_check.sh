@@ -27,7 +27,7 @@ ctest --preset core-gpu -L gpu -V 2>&1 | tee "$out/ctest_gpu.txt" | grep -E "GPU
 gpu=${PIPESTATUS[0]}
 bench=0
 if [ "${HDRF_GPU_BENCH:-1}" = 1 ]; then
-  build-gpu/app/bench/hdrfusion-bench --frames "${HDRF_BENCH_FRAMES:-100}" --device both --voxel "${HDRF_BENCH_VOXEL:-all}" 2>&1 | tee "$out/bench.txt"
+  build-gpu/app/bench/hdrfusion-bench --frames "${HDRF_BENCH_FRAMES:-100}" --device "${HDRF_BENCH_DEVICE:-both}" --voxel "${HDRF_BENCH_VOXEL:-all}" 2>&1 | tee "$out/bench.txt"
   bench=${PIPESTATUS[0]}
 fi
 set -e

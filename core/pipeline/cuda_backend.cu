@@ -37,6 +37,30 @@ void ForEachPixel(int w, int h, F f) {
   PixelKernel<<<grid, block>>>(w, h, f);
   HDRF_CUDA_CHECK_LAUNCH();
 }
+// Row pass of the NR integral images: one block per row stages the row in shared memory
+// (coalesced), one thread runs the same sequential sums as the CPU, all threads write back.
+__global__ void NrRowPassKernel(ImageView<const float> cells, imaging::NrIntegrals in) {
+  extern __shared__ double smem[];
+  const int sw = cells.width, y = blockIdx.x;
+  double* c = smem;
+  double* a = c + 2 * (sw + 1);
+  double* b = a + 2 * (sw + 1);
+  float* m = reinterpret_cast<float*>(b + 2 * (sw + 1));
+  for (int x = threadIdx.x; x < sw; x += blockDim.x) m[x] = cells(x, y);
+  __syncthreads();
+  if (threadIdx.x == 0) {
+    const ImageView<const float> row{m, sw, 1};
+    const imaging::NrIntegrals local{{c, sw + 1, 2}, {a, sw + 1, 2}, {b, sw + 1, 2}};
+    imaging::NrRowPass(row, local, 0);  // writes entries (x, 1) of the 2-row local images
+  }
+  __syncthreads();
+  for (int x = threadIdx.x; x <= sw; x += blockDim.x) {
+    in.cnt(x, y + 1) = c[sw + 1 + x];
+    in.s1(x, y + 1) = a[sw + 1 + x];
+    in.s2(x, y + 1) = b[sw + 1 + x];
+  }
+}
+
 template <typename F>
 __global__ void IndexKernel(int n, F f) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -169,6 +193,7 @@ class CudaBackend final : public Backend {
   template <typename V>
   void RaycastT(RenderD& out, const Pose& T);
   void NormalizeLum(ImageView<const float> lum, ImageView<float> nr);
+  void RowPass(ImageView<const float> cells, const imaging::NrIntegrals& in);
   template <typename Acc, typename F>
   Acc Sum(int w, int h, F f);
 
@@ -359,6 +384,17 @@ void CudaBackend::Convert(const ColorImage& color, const DepthImage& depth_m) {
   }
 }
 
+void CudaBackend::RowPass(ImageView<const float> cells, const imaging::NrIntegrals& in) {
+  const int sw = cells.width;
+  const std::size_t shared = 3 * 2 * std::size_t(sw + 1) * sizeof(double) + std::size_t(sw) * sizeof(float);
+  if (shared <= 48 * 1024) {
+    NrRowPassKernel<<<cells.height, 128, shared>>>(cells, in);
+    HDRF_CUDA_CHECK_LAUNCH();
+  } else {  // very wide images: one thread per row
+    ForEachIndex(cells.height, [=] __device__(int y) { imaging::NrRowPass(cells, in, y); });
+  }
+}
+
 void CudaBackend::NormalizeLum(ImageView<const float> lumc, ImageView<float> nr) {
   const int w = lumc.width, h = lumc.height, f = o_.nr.downsample;
   const auto cells = cells_.view();
@@ -366,7 +402,7 @@ void CudaBackend::NormalizeLum(ImageView<const float> lumc, ImageView<float> nr)
                [=] __device__(int x, int y) { cells(x, y) = imaging::NrCellMean(lumc, x, y, f); });
   const imaging::NrIntegrals in{cnt_.view(), s1_.view(), s2_.view()};
   const ImageView<const float> cellc = cells;
-  ForEachIndex(cells.height, [=] __device__(int y) { imaging::NrRowPass(cellc, in, y); });
+  RowPass(cellc, in);
   ForEachIndex(cells.width + 1, [=] __device__(int x) { imaging::NrColumnPass(in, x); });
   const auto ms = mean_s_.view(), ss = std_s_.view();
   const int r = o_.nr.patch / 2;

@@ -6,6 +6,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__CUDACC__)
+#include <cuda_fp16.h>
+#endif
+
 #include "common/camera.h"
 #include "common/host_device.h"
 #include "common/image_view.h"
@@ -30,9 +34,12 @@ struct Voxel {
 //                   IEEE half floats, no NR.
 enum class VoxelEncoding { kFull, kNoNr, kCompact };
 
-// IEEE half <-> float in plain integer arithmetic (round to nearest even), so that the CPU
-// and the GPU store exactly the same bits.
+// IEEE half <-> float, round to nearest even: in integer arithmetic on the CPU, by the
+// hardware on the GPU; both store exactly the same bits (the parity tests check it).
 HDRF_HD std::uint16_t FloatToHalf(float f) {
+#if defined(__CUDA_ARCH__)
+  return __half_as_ushort(__float2half_rn(f));  // the same rounding, in hardware
+#else
   std::uint32_t x;
   memcpy(&x, &f, 4);
   const std::uint32_t sign = (x >> 16) & 0x8000u, a = x & 0x7fffffffu;
@@ -50,8 +57,12 @@ HDRF_HD std::uint16_t FloatToHalf(float f) {
   const std::uint32_t rem = a & 0x1fffu;
   if (rem > 0x1000u || (rem == 0x1000u && (h & 1u))) ++h;  // a carry rolls into the exponent
   return std::uint16_t(sign | h);
+#endif
 }
 HDRF_HD float HalfToFloat(std::uint16_t h) {
+#if defined(__CUDA_ARCH__)
+  return __half2float(__ushort_as_half(h));  // exact either way
+#else
   const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
   std::uint32_t x;
   if (e == 0) {
@@ -70,6 +81,7 @@ HDRF_HD float HalfToFloat(std::uint16_t h) {
   float f;
   memcpy(&f, &x, 4);
   return f;
+#endif
 }
 
 struct FullVoxel {
