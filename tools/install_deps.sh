@@ -9,6 +9,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   libopencv-photo-dev
   libopenexr-dev
+  qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
 )
 missing=()
 for p in "${packages[@]}"; do

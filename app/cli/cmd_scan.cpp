@@ -10,7 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/source_spec.h"
+#include "io/source_spec.h"
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
@@ -91,7 +91,7 @@ Command AddScanCommand(CLI::App& app) {
     if (!a->voxel.empty()) o.volume.encoding = volume::ParseVoxelEncoding(a->voxel);
     if (a->device == "cuda") o.device = Device::kCuda;
     o.Check();
-    auto source = OpenSource(a->source, a->response);
+    auto source = io::OpenSource(a->source, a->response);
     const fs::path out = a->out;
     std::error_code ec;
     fs::create_directories(out, ec);

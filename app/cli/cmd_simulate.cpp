@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "cli/commands.h"
+#include "io/source_spec.h"
 #include "cli/progress.h"
 #include "common/error.h"
 #include "io/sensor_json.h"
@@ -30,11 +31,6 @@ std::vector<double> ParseList(const std::string& s, const char* flag) {
   return out;
 }
 }  // namespace
-
-void ParseSize(const std::string& s, int* w, int* h) {
-  if (std::sscanf(s.c_str(), "%dx%d", w, h) != 2)
-    throw SettingError("--size", "expected WIDTHxHEIGHT such as 320x240, got '" + s + "'");
-}
 
 Command AddSimulateCommand(CLI::App& app) {
   struct Args {
@@ -73,7 +69,7 @@ Command AddSimulateCommand(CLI::App& app) {
     o.scene = a->scene;
     o.seed = a->seed;
     o.frames = a->frames;
-    ParseSize(a->size, &o.width, &o.height);
+    io::ParseSize(a->size, &o.width, &o.height);
     o.ae.mode = sim::ParseAeMode(a->ae);
     o.ae.fixed_ms = a->exposure_ms;
     if (!a->exposures.empty()) o.ae.list_ms = ParseList(a->exposures, "--exposures");

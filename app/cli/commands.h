@@ -12,7 +12,6 @@ struct Command {
 };
 
 // "WIDTHxHEIGHT" (e.g. 320x240); throws SettingError naming --size otherwise.
-void ParseSize(const std::string& s, int* w, int* h);
 
 Command AddInfoCommand(CLI::App& app);
 Command AddRadianceCommand(CLI::App& app);

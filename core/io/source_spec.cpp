@@ -1,13 +1,17 @@
-#include "cli/source_spec.h"
+#include "io/source_spec.h"
 
-#include "cli/commands.h"
-
+#include <cstdio>
 #include <sstream>
 
 #include "common/error.h"
 #include "io/sequence_source.h"
 
-namespace hdrf::cli {
+namespace hdrf::io {
+
+void ParseSize(const std::string& s, int* w, int* h) {
+  if (std::sscanf(s.c_str(), "%dx%d", w, h) != 2)
+    throw SettingError("--size", "expected WIDTHxHEIGHT such as 320x240, got '" + s + "'");
+}
 
 std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const std::string& response) {
   const std::string prefix = "synthetic:";
@@ -36,7 +40,7 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
     }
     return std::make_unique<pipeline::SyntheticFrameSource>(o);
   }
-  auto seq = std::make_unique<io::SequenceFrameSource>(spec);
+  auto seq = std::make_unique<SequenceFrameSource>(spec);
   if (!seq->sensor().response) {
     if (response == "srgb") {
       seq->set_response(radiometry::InverseResponse::Srgb());
@@ -50,4 +54,4 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
   return seq;
 }
 
-}  // namespace hdrf::cli
+}  // namespace hdrf::io

@@ -1,0 +1,73 @@
+#include "gui/exposure_plot.h"
+
+#include <QPainter>
+#include <QPainterPath>
+#include <algorithm>
+#include <cmath>
+
+namespace hdrf::gui {
+
+namespace {
+constexpr std::size_t kWindow = 200;
+}
+
+ExposurePlot::ExposurePlot(QWidget* parent) : QWidget(parent) {
+  setMinimumSize(200, 90);
+  setToolTip(tr("Exposure ratio to the first frame, in stops: estimated by the engine (cyan) "
+                "and reported by the sensor (orange)"));
+}
+
+void ExposurePlot::SetSeries(const std::vector<double>& est, const std::vector<double>& rep) {
+  const std::size_t n = est.size(), first = n > kWindow ? n - kWindow : 0;
+  est_.assign(est.begin() + long(first), est.end());
+  rep_.assign(rep.begin() + long(std::min(first, rep.size())), rep.end());
+  update();
+}
+
+void ExposurePlot::paintEvent(QPaintEvent*) {
+  QPainter p(this);
+  p.setRenderHint(QPainter::Antialiasing);
+  p.fillRect(rect(), QColor(24, 24, 28));
+  p.setPen(QColor(120, 120, 120));
+  p.drawText(rect().adjusted(4, 2, -4, -2), Qt::AlignTop | Qt::AlignLeft, tr("exposure (stops)"));
+  if (est_.empty()) return;
+  double lo = 1e9, hi = -1e9;
+  auto stops = [](double r) { return r > 0 && std::isfinite(r) ? std::log2(r) : std::nan(""); };
+  for (double v : est_) {
+    const double s = stops(v);
+    if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
+  }
+  for (double v : rep_) {
+    const double s = stops(v);
+    if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
+  }
+  if (!(hi > lo)) lo -= 0.5, hi += 0.5;
+  const QRectF r = QRectF(rect()).adjusted(6, 18, -6, -6);
+  auto pt = [&](std::size_t i, double s) {
+    const double x = r.left() + r.width() * double(i) / double(std::max<std::size_t>(1, kWindow - 1));
+    return QPointF(x, r.bottom() - r.height() * (s - lo) / (hi - lo));
+  };
+  auto draw = [&](const std::vector<double>& v, QColor c, double width) {
+    QPainterPath path;
+    bool open = false;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const double s = stops(v[i]);
+      if (!std::isfinite(s)) {
+        open = false;
+        continue;
+      }
+      if (open) path.lineTo(pt(i, s));
+      else path.moveTo(pt(i, s));
+      open = true;
+    }
+    p.setPen(QPen(c, width));
+    p.drawPath(path);
+  };
+  draw(rep_, QColor(255, 160, 60), 4.0);  // wide beneath: visible where the two agree
+  draw(est_, QColor(80, 220, 255), 1.5);
+  p.setPen(QColor(160, 160, 160));
+  p.drawText(r, Qt::AlignRight | Qt::AlignTop, QString::number(hi, 'f', 1));
+  p.drawText(r, Qt::AlignRight | Qt::AlignBottom, QString::number(lo, 'f', 1));
+}
+
+}  // namespace hdrf::gui

@@ -1,0 +1,594 @@
+#include "gui/main_window.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDateTime>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressDialog>
+#include <QPushButton>
+#include <QSettings>
+#include <QSlider>
+#include <QSpinBox>
+#include <QStatusBar>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <cmath>
+#include <cstring>
+
+#include "common/cuda_runtime.h"
+#include "gui/exposure_plot.h"
+#include "gui/image_view.h"
+#include "gui/vtk_view.h"
+#include "io/exr.h"
+#include "tonemap/display.h"
+
+namespace hdrf::gui {
+
+namespace {
+
+const char* kSynthRoom = "synthetic:scene=room,frames=300,ae=flicker";
+const char* kSynthDesk = "synthetic:scene=desk,frames=300,ae=smooth";
+
+QImage FromColor(const ColorImage& c) {
+  QImage img(c.width(), c.height(), QImage::Format_RGB888);
+  for (int y = 0; y < c.height(); ++y) std::memcpy(img.scanLine(y), &c(0, y), std::size_t(c.width()) * 3);
+  return img;
+}
+
+// A scalar image to grey over [lo, hi]; `valid(v)` false draws dark blue (no data).
+template <typename F>
+QImage Grey(const Image<float>& im, float lo, float hi, F valid) {
+  QImage img(im.width(), im.height(), QImage::Format_RGB888);
+  for (int y = 0; y < im.height(); ++y) {
+    std::uint8_t* row = img.scanLine(y);
+    for (int x = 0; x < im.width(); ++x) {
+      const float v = im(x, y);
+      if (!valid(v)) {
+        row[3 * x] = 0, row[3 * x + 1] = 0, row[3 * x + 2] = 40;
+        continue;
+      }
+      const int g = int(std::lround(255.f * std::clamp((v - lo) / (hi - lo), 0.f, 1.f)));
+      row[3 * x] = row[3 * x + 1] = row[3 * x + 2] = std::uint8_t(g);
+    }
+  }
+  return img;
+}
+
+QString Rad(Float3 r) {
+  return QStringLiteral("radiance %1 %2 %3").arg(r.x, 0, 'g', 4).arg(r.y, 0, 'g', 4).arg(r.z, 0, 'g', 4);
+}
+
+}  // namespace
+
+MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(parent), opts_(o) {
+  setWindowTitle(tr("HDRFusion Studio"));
+  setObjectName("HDRFusionStudio");
+  tone_ = std::make_unique<ToneMapper>();
+  BuildViews();
+  BuildControls();
+  BuildStatus();
+  BuildMenus();
+  default_state_ = saveState();
+  LoadSettings();
+  if (!o.source.isEmpty()) source_->setCurrentText(o.source);
+  if (o.device == "cpu") device_->setCurrentIndex(0);
+  if (o.device == "cuda") device_->setCurrentIndex(1);
+  // The scan thread.
+  worker_ = new ScanWorker;
+  worker_->moveToThread(&thread_);
+  connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
+  connect(this, &MainWindow::configure, worker_, &ScanWorker::Configure);
+  connect(this, &MainWindow::start, worker_, &ScanWorker::Start);
+  connect(this, &MainWindow::pause, worker_, &ScanWorker::Pause);
+  connect(this, &MainWindow::stop, worker_, &ScanWorker::Stop);
+  connect(this, &MainWindow::reset, worker_, &ScanWorker::Reset);
+  connect(this, &MainWindow::exportMesh, worker_, &ScanWorker::ExportMesh);
+  connect(this, &MainWindow::exportTrajectory, worker_, &ScanWorker::ExportTrajectory);
+  connect(this, &MainWindow::exportRender, worker_, &ScanWorker::ExportRender);
+  connect(worker_, &ScanWorker::snapshot, this, &MainWindow::OnSnapshot);
+  connect(worker_, &ScanWorker::failed, this, &MainWindow::OnFailed);
+  connect(worker_, &ScanWorker::stateChanged, this, [this](bool running, const QString& msg) {
+    statusBar()->showMessage(msg);
+    start_->setEnabled(!running);
+    pause_->setEnabled(running);
+  });
+  connect(worker_, &ScanWorker::exportDone, this, [this](bool ok, const QString& msg) {
+    statusBar()->showMessage(msg, 10000);
+    if (!ok) QMessageBox::warning(this, tr("Export"), msg);
+  });
+  connect(worker_, &ScanWorker::finished, this, [this](int) {
+    if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+  });
+  thread_.start();
+  render_timer_ = new QTimer(this);
+  connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
+  render_timer_->start(33);
+  emit configure(CurrentSettings());
+  if (o.autostart || !o.screenshot.isEmpty()) QTimer::singleShot(0, this, &MainWindow::StartScan);
+}
+
+MainWindow::~MainWindow() {
+  if (worker_) QMetaObject::invokeMethod(worker_, &ScanWorker::Pause, Qt::BlockingQueuedConnection);
+  thread_.quit();
+  thread_.wait();
+}
+
+void MainWindow::BuildViews() {
+  view3d_ = new VtkView(this);
+  setCentralWidget(view3d_);
+  struct V {
+    const char* key;
+    QString title;
+    Qt::DockWidgetArea area;
+  };
+  const V defs[] = {{"colour", tr("Colour (as delivered)"), Qt::LeftDockWidgetArea},
+                    {"depth", tr("Depth"), Qt::LeftDockWidgetArea},
+                    {"radiance", tr("Radiance (tone-mapped)"), Qt::LeftDockWidgetArea},
+                    {"nr", tr("Normalized radiance"), Qt::RightDockWidgetArea},
+                    {"confidence", tr("Confidence (PCF)"), Qt::RightDockWidgetArea},
+                    {"model_radiance", tr("Model radiance (ray cast)"), Qt::RightDockWidgetArea},
+                    {"model_normals", tr("Model normals (ray cast)"), Qt::RightDockWidgetArea}};
+  for (const V& d : defs) {
+    auto* v = new ImageView(d.title, this);
+    connect(v, &ImageView::status, this, [this](const QString& m) { statusBar()->showMessage(m, 5000); });
+    auto* dock = new QDockWidget(d.title, this);
+    dock->setObjectName(QString("dock_") + d.key);
+    dock->setWidget(v);
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
+                      QDockWidget::DockWidgetClosable);
+    addDockWidget(d.area, dock);
+    views_[d.key] = v;
+    docks_[d.key] = dock;
+  }
+}
+
+void MainWindow::BuildControls() {
+  auto* w = new QWidget;
+  auto* layout = new QVBoxLayout(w);
+  // Source and transport.
+  auto* src = new QGroupBox(tr("Source"));
+  auto* sl = new QVBoxLayout(src);
+  source_ = new QComboBox;
+  source_->setEditable(true);
+  source_->addItems({kSynthRoom, kSynthDesk});
+  source_->setToolTip(tr("A sequence folder, or synthetic:key=value,... (scene, seed, frames, ae, exposure, size)"));
+  auto* browse = new QPushButton(tr("Sequence folder…"));
+  connect(browse, &QPushButton::clicked, this, [this] {
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Recorded sequence"));
+    if (!dir.isEmpty()) {
+      source_->setCurrentText(dir);
+      ApplyEngineSettings();
+    }
+  });
+  auto* sensor = new QComboBox;
+  sensor->addItem(tr("OpenNI2 sensor: none connected"));
+  sensor->setEnabled(false);
+  sensor->setToolTip(tr("Live OpenNI2 capture arrives with the sensor driver; recorded sequences and the "
+                        "synthetic sensor work today"));
+  sl->addWidget(source_);
+  sl->addWidget(browse);
+  sl->addWidget(sensor);
+  auto* transport = new QHBoxLayout;
+  start_ = new QPushButton(tr("Start"));
+  pause_ = new QPushButton(tr("Pause"));
+  stop_ = new QPushButton(tr("Stop"));
+  reset_ = new QPushButton(tr("Reset"));
+  pause_->setEnabled(false);
+  for (auto* b : {start_, pause_, stop_, reset_}) transport->addWidget(b);
+  sl->addLayout(transport);
+  connect(start_, &QPushButton::clicked, this, &MainWindow::StartScan);
+  connect(pause_, &QPushButton::clicked, this, &MainWindow::PauseScan);
+  connect(stop_, &QPushButton::clicked, this, &MainWindow::StopScan);
+  connect(reset_, &QPushButton::clicked, this, &MainWindow::ResetScan);
+  layout->addWidget(src);
+  // Engine.
+  auto* eng = new QGroupBox(tr("Engine (applies on Reset)"));
+  auto* f = new QFormLayout(eng);
+  tracker_ = new QComboBox;
+  tracker_->addItems({"nr+icp", "nr", "icp", "intensity"});
+  pcf_ = new QSpinBox;
+  pcf_->setRange(0, 3);
+  pcf_->setValue(1);
+  pcf_->setPrefix("p");
+  device_ = new QComboBox;
+  device_->addItems({"cpu", "cuda"});
+  std::string why;
+  if (!CudaAvailable(&why)) {
+    device_->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
+  }
+  voxel_ = new QComboBox;
+  voxel_->addItems({"compact", "no-nr", "full"});
+  res_ = new QSpinBox;
+  res_->setRange(64, 1024);
+  res_->setSingleStep(64);
+  res_->setValue(256);
+  size_ = new QDoubleSpinBox;
+  size_->setRange(0.5, 20);
+  size_->setValue(6);
+  size_->setSuffix(" m");
+  tau0_ = new QDoubleSpinBox;
+  tau0_->setRange(0, 0.99);
+  tau0_->setSingleStep(0.05);
+  tau0_->setValue(0.1);
+  tau1_ = new QDoubleSpinBox;
+  tau1_->setRange(1, 90);
+  tau1_->setValue(75);
+  tau1_->setSuffix(QString::fromUtf8("°"));
+  f->addRow(tr("Tracker"), tracker_);
+  f->addRow(tr("Pixel confidence"), pcf_);
+  f->addRow(tr("Device"), device_);
+  f->addRow(tr("Voxels"), voxel_);
+  f->addRow(tr("Volume resolution"), res_);
+  f->addRow(tr("Volume size"), size_);
+  f->addRow(QString::fromUtf8("τ0 (min PCF)"), tau0_);
+  f->addRow(QString::fromUtf8("τ1 (max view angle)"), tau1_);
+  layout->addWidget(eng);
+  // Tone mapping.
+  auto* tone = new QGroupBox(tr("Tone mapping (OpenColorIO %1 / %2)").arg(tone_->display(), tone_->view()));
+  auto* tf = new QFormLayout(tone);
+  tone_op_ = new QComboBox;
+  tone_op_->addItems({tr("Reinhard (global)"), tr("Linear")});
+  exposure_ = new QSlider(Qt::Horizontal);
+  exposure_->setRange(-40, 40);
+  exposure_->setToolTip(tr("Exposure in tenths of a stop"));
+  gamma_ = new QDoubleSpinBox;
+  gamma_->setRange(0.4, 3.0);
+  gamma_->setSingleStep(0.1);
+  gamma_->setValue(1.0);
+  tf->addRow(tr("Operator"), tone_op_);
+  tf->addRow(tr("Exposure"), exposure_);
+  tf->addRow(tr("Gamma"), gamma_);
+  auto retone = [this] {
+    tone_settings_.op = tone_op_->currentIndex() == 0 ? ToneSettings::Operator::kReinhard : ToneSettings::Operator::kLinear;
+    tone_settings_.exposure_stops = float(exposure_->value()) / 10.f;
+    tone_settings_.gamma = float(gamma_->value());
+    shown_.reset();  // redraw with the new mapping
+    mesh_shown_.reset();
+  };
+  connect(tone_op_, &QComboBox::currentIndexChanged, this, retone);
+  connect(exposure_, &QSlider::valueChanged, this, retone);
+  connect(gamma_, &QDoubleSpinBox::valueChanged, this, retone);
+  layout->addWidget(tone);
+  layout->addStretch(1);
+  auto* dock = new QDockWidget(tr("Controls"), this);
+  dock->setObjectName("dock_controls");
+  dock->setWidget(w);
+  addDockWidget(Qt::LeftDockWidgetArea, dock);
+  docks_["controls"] = dock;
+  tabifyDockWidget(docks_["colour"], dock);
+  dock->raise();
+}
+
+void MainWindow::BuildStatus() {
+  auto* w = new QWidget;
+  auto* l = new QVBoxLayout(w);
+  frames_label_ = new QLabel(tr("No frame yet"));
+  health_ = new QLabel(tr("Tracking: -"));
+  health_->setObjectName("health");
+  error_ = new QLabel;
+  error_->setObjectName("error");
+  error_->setWordWrap(true);
+  error_->setStyleSheet("QLabel { color: white; background: #a02020; padding: 4px; }");
+  error_->hide();
+  stages_ = new QLabel;
+  stages_->setTextFormat(Qt::RichText);
+  memory_ = new QLabel;
+  plot_ = new ExposurePlot;
+  for (QWidget* x : {static_cast<QWidget*>(frames_label_), static_cast<QWidget*>(health_),
+                     static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_),
+                     static_cast<QWidget*>(plot_)})
+    l->addWidget(x);
+  l->addStretch(1);
+  auto* dock = new QDockWidget(tr("Status"), this);
+  dock->setObjectName("dock_status");
+  dock->setWidget(w);
+  addDockWidget(Qt::BottomDockWidgetArea, dock);
+  docks_["status"] = dock;
+}
+
+void MainWindow::BuildMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  QMenu* exp = file->addMenu(tr("&Export"));
+  exp->addAction(tr("HDR mesh (PLY)…"), this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, tr("Export HDR mesh"), "mesh.ply", tr("PLY (*.ply)"));
+    if (p.isEmpty()) return;
+    auto* dlg = new QProgressDialog(tr("Extracting and writing the mesh…"), tr("Cancel"), 0, 100, this);
+    dlg->setAttribute(Qt::WA_DeleteOnClose);
+    dlg->setMinimumDuration(300);
+    connect(dlg, &QProgressDialog::canceled, this, [this] { worker_->CancelExport(); });
+    connect(worker_, &ScanWorker::exportProgress, dlg, [dlg](double f) { dlg->setValue(int(100 * f)); });
+    connect(worker_, &ScanWorker::exportDone, dlg, [dlg](bool, const QString&) { dlg->close(); });
+    emit exportMesh(p);
+  });
+  exp->addAction(tr("Trajectory (TUM)…"), this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, tr("Export trajectory"), "trajectory.txt");
+    if (!p.isEmpty()) emit exportTrajectory(p);
+  });
+  exp->addAction(tr("Model render (OpenEXR)…"), this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, tr("Export model render"), "render.exr", tr("OpenEXR (*.exr)"));
+    if (!p.isEmpty()) emit exportRender(p);
+  });
+  file->addAction(tr("Save window screenshot…"), this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, tr("Screenshot"), "studio.png", tr("PNG (*.png)"));
+    if (!p.isEmpty()) SaveScreenshot(p);
+  });
+  file->addSeparator();
+  file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+  QMenu* scan = menuBar()->addMenu(tr("&Scan"));
+  scan->addAction(tr("Start"), this, &MainWindow::StartScan);
+  scan->addAction(tr("Pause"), this, &MainWindow::PauseScan);
+  scan->addAction(tr("Stop"), this, &MainWindow::StopScan);
+  scan->addAction(tr("Reset (apply engine settings)"), this, &MainWindow::ResetScan);
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  for (auto it = docks_.begin(); it != docks_.end(); ++it) view->addAction(it.value()->toggleViewAction());
+  view->addSeparator();
+  view->addAction(tr("Reset 3-D view"), this, [this] { view3d_->ResetView(); });
+  view->addAction(tr("Restore default layout"), this, [this] {
+    restoreState(default_state_);
+    for (QDockWidget* d : docks_) d->show();
+  });
+}
+
+ScanSettings MainWindow::CurrentSettings() const {
+  ScanSettings s;
+  s.source = source_->currentText().toStdString();
+  auto& p = s.pipeline;
+  p.tracker.kind = tracking::ParseTrackerKind(tracker_->currentText().toStdString());
+  p.pcf = pcf_->value();
+  p.device = device_->currentText() == "cuda" ? Device::kCuda : Device::kCpu;
+  p.volume.encoding = volume::ParseVoxelEncoding(voxel_->currentText().toStdString());
+  p.volume.resolution = res_->value() / 8 * 8;
+  p.volume.size_m = float(size_->value());
+  p.volume.tau0 = float(tau0_->value());
+  p.volume.tau1_deg = float(tau1_->value());
+  return s;
+}
+
+void MainWindow::ApplyEngineSettings() {
+  error_->hide();
+  emit configure(CurrentSettings());
+}
+
+void MainWindow::StartScan() {
+  error_->hide();
+  emit start();
+}
+void MainWindow::PauseScan() { emit pause(); }
+void MainWindow::StopScan() { emit stop(); }
+void MainWindow::ResetScan() {
+  latest_.reset();
+  shown_.reset();
+  ApplyEngineSettings();
+}
+
+void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
+  latest_ = std::move(s);  // older ones not shown yet are simply dropped
+  if (!opts_.screenshot.isEmpty() && opts_.frames > 0 && latest_->report.index + 1 >= opts_.frames) {
+    emit pause();
+    QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+  } else if (opts_.frames > 0 && latest_->report.index + 1 >= opts_.frames) {
+    emit pause();
+  }
+}
+
+void MainWindow::OnFailed(const QString& message) {
+  error_->setText(message);
+  error_->show();
+  docks_["status"]->show();
+  statusBar()->showMessage(message);
+  if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+}
+
+QString MainWindow::health_text() const { return health_->text(); }
+QString MainWindow::error_text() const { return error_->isVisible() || !error_->text().isEmpty() ? error_->text() : QString(); }
+
+void MainWindow::Render() {
+  const auto s = latest_;
+  if (!s || s == shown_) return;
+  shown_ = s;
+  ++frames_shown_;
+  const auto& im = s->images;
+  const ToneSettings ts = tone_settings_;
+  // 2-D views (hidden docks are skipped: they cost nothing).
+  auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
+  if (visible("colour")) {
+    views_["colour"]->SetImage(FromColor(s->color), [s](int x, int y) {
+      const Rgb8 c = s->color(x, y);
+      return QStringLiteral("RGB %1 %2 %3 (8-bit)").arg(c.r).arg(c.g).arg(c.b);
+    });
+  }
+  if (visible("depth")) {
+    float hi = 0.5f;
+    for (std::size_t i = 0; i < s->depth.size(); ++i) hi = std::max(hi, s->depth[i]);
+    hi = std::min(hi, 8.f);
+    const ColorImage cd = tonemap::ColorizeDepth(s->depth, 0.f, hi);
+    QVector<QRgb> bar;
+    DepthImage ramp(1, 64);
+    for (int i = 0; i < 64; ++i) ramp(0, i) = std::max(1e-3f, hi * float(i) / 63.f);
+    const ColorImage rc = tonemap::ColorizeDepth(ramp, 0.f, hi);
+    for (int i = 0; i < 64; ++i) bar.push_back(qRgb(rc(0, i).r, rc(0, i).g, rc(0, i).b));
+    views_["depth"]->SetScaleBar(bar, 0, hi, "m");
+    views_["depth"]->SetImage(FromColor(cd), [s](int x, int y) {
+      const float z = s->depth(x, y);
+      return z > 0 ? QStringLiteral("depth %1 m").arg(z, 0, 'f', 3) : QStringLiteral("no depth");
+    });
+  }
+  if (visible("radiance")) {
+    views_["radiance"]->SetImage(tone_->Map(im.radiance, ts), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
+                                 [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });
+  }
+  if (visible("nr")) {
+    views_["nr"]->SetImage(Grey(im.nr, -3.f, 3.f, [](float v) { return v != 0.f; }), [s](int x, int y) {
+      return QStringLiteral("NR %1").arg(s->images.nr(x, y), 0, 'f', 3);
+    });
+  }
+  if (visible("confidence")) {
+    float mx = 1e-6f;
+    for (std::size_t i = 0; i < im.confidence.size(); ++i) mx = std::max(mx, im.confidence[i]);
+    views_["confidence"]->SetImage(Grey(im.confidence, 0.f, mx, [](float) { return true; }), [s](int x, int y) {
+      return QStringLiteral("PCF %1 (max channel %2)")
+          .arg(s->images.confidence(x, y), 0, 'f', 3)
+          .arg(s->images.max_confidence(x, y), 0, 'f', 3);
+    });
+  }
+  if (visible("model_radiance") && !im.render.radiance.empty()) {
+    views_["model_radiance"]->SetImage(
+        tone_->Map(im.render.radiance, ts), [s](int x, int y) { return Rad(s->images.render.radiance(x, y)); },
+        [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.render.radiance); });
+  }
+  if (visible("model_normals") && !im.render.normal.empty()) {
+    const auto& n = im.render.normal;
+    QImage img(n.width(), n.height(), QImage::Format_RGB888);
+    for (int y = 0; y < n.height(); ++y)
+      for (int x = 0; x < n.width(); ++x) {
+        const Float3 v = n(x, y);
+        const bool hit = Length(v) > 0;
+        img.setPixel(x, y, hit ? qRgb(int(127.5f * (v.x + 1)), int(127.5f * (v.y + 1)), int(127.5f * (v.z + 1)))
+                               : qRgb(0, 0, 40));
+      }
+    views_["model_normals"]->SetImage(img, [s](int x, int y) {
+      const Float3 v = s->images.render.normal(x, y);
+      const float d = s->images.render.depth(x, y);
+      return d > 0 ? QStringLiteral("normal %1 %2 %3, depth %4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
+                   : QStringLiteral("no surface");
+    });
+  }
+  // 3-D view: the mesh a few times a second, the trajectory every frame.
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (s->mesh && s->mesh != mesh_shown_ && (now - mesh_time_ms_ > 300 || !mesh_shown_)) {
+    mesh_shown_ = s->mesh;
+    mesh_time_ms_ = now;
+    view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance, ts));
+  }
+  view3d_->SetTrajectory(s->trajectory, s->camera);
+  // Status.
+  const auto& r = s->report;
+  frames_label_->setText(tr("Frame %1%2 on the %3")
+                             .arg(r.index + 1)
+                             .arg(s->frames_total > 0 ? QStringLiteral(" / %1").arg(s->frames_total) : QString())
+                             .arg(QString::fromStdString(s->device).toUpper()));
+  if (r.tracking.lost) {
+    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(QString::fromStdString(r.tracking.why)));
+    health_->setStyleSheet("QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
+  } else {
+    health_->setText(tr("Tracking OK: %1 % of pixels matched, %2 iterations")
+                         .arg(int(100 * r.tracking.inlier_share))
+                         .arg(r.tracking.iterations));
+    health_->setStyleSheet("QLabel { color: white; background: #207040; padding: 3px; }");
+  }
+  const auto& m = r.ms;
+  stages_->setText(tr("<table><tr><td>convert</td><td align=right>%1 ms</td></tr><tr><td>normalize</td><td align=right>%2 ms</td></tr>"
+                      "<tr><td>track</td><td align=right>%3 ms</td></tr><tr><td>compensate</td><td align=right>%4 ms</td></tr>"
+                      "<tr><td>integrate</td><td align=right>%5 ms</td></tr><tr><td>ray cast</td><td align=right>%6 ms</td></tr>"
+                      "<tr><td><b>total</b></td><td align=right><b>%7 ms (%8 frames/s)</b></td></tr></table>")
+                       .arg(m.convert, 0, 'f', 1).arg(m.normalize, 0, 'f', 1).arg(m.track, 0, 'f', 1)
+                       .arg(m.compensate, 0, 'f', 1).arg(m.integrate, 0, 'f', 1).arg(m.raycast, 0, 'f', 1)
+                       .arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
+  memory_->setText(tr("Volume: %1 MiB in %2 bricks").arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1).arg(s->bricks));
+  plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
+}
+
+bool MainWindow::SaveScreenshot(const QString& path) {
+  Render();
+  QApplication::processEvents();
+  const QImage shot = grab().toImage();
+  bool ok = shot.save(path, "PNG");
+  QJsonObject report;
+  QJsonObject views;
+  for (auto it = views_.begin(); it != views_.end(); ++it) {
+    QJsonObject v;
+    v["width"] = it.value()->image().width();
+    v["height"] = it.value()->image().height();
+    v["distinct_levels"] = it.value()->DistinctLevels();
+    v["visible"] = docks_[it.key()]->isVisible();
+    views[it.key()] = v;
+  }
+  report["views"] = views;
+  const QImage v3 = view3d_->Capture();
+  QJsonObject v3d;
+  v3d["triangles"] = qint64(view3d_->mesh_triangles());
+  {
+    ImageView probe("3d");
+    probe.SetImage(v3, {});
+    v3d["distinct_levels"] = probe.DistinctLevels();
+  }
+  v3d["width"] = v3.width();
+  v3d["height"] = v3.height();
+  report["view3d"] = v3d;
+  report["frames_processed"] = latest_ ? latest_->report.index + 1 : 0;
+  report["frames_shown"] = frames_shown_;
+  report["health"] = health_->text();
+  report["error"] = error_->text();
+  report["window"] = QJsonArray{shot.width(), shot.height()};
+  QFile f(path + ".json");
+  ok = ok && f.open(QIODevice::WriteOnly) && f.write(QJsonDocument(report).toJson()) > 0;
+  return ok;
+}
+
+void MainWindow::FinishScripted() {
+  if (scripted_done_) return;
+  scripted_done_ = true;
+  const bool ok = SaveScreenshot(opts_.screenshot);
+  std::fprintf(stderr, "hdrfusion-studio: %s %s (%d frames shown)\n", ok ? "saved" : "could not save",
+               qPrintable(opts_.screenshot), frames_shown_);
+  emit screenshotTaken(ok);
+  QApplication::exit(ok ? 0 : 1);
+}
+
+void MainWindow::LoadSettings() {
+  QSettings s;
+  restoreGeometry(s.value("window/geometry").toByteArray());
+  restoreState(s.value("window/state").toByteArray());
+  if (s.contains("source")) source_->setCurrentText(s.value("source").toString());
+  tracker_->setCurrentText(s.value("engine/tracker", tracker_->currentText()).toString());
+  pcf_->setValue(s.value("engine/pcf", pcf_->value()).toInt());
+  device_->setCurrentText(s.value("engine/device", device_->currentText()).toString());
+  voxel_->setCurrentText(s.value("engine/voxel", voxel_->currentText()).toString());
+  res_->setValue(s.value("engine/resolution", res_->value()).toInt());
+  size_->setValue(s.value("engine/size_m", size_->value()).toDouble());
+  tau0_->setValue(s.value("engine/tau0", tau0_->value()).toDouble());
+  tau1_->setValue(s.value("engine/tau1", tau1_->value()).toDouble());
+  tone_op_->setCurrentIndex(s.value("tone/operator", 0).toInt());
+  exposure_->setValue(s.value("tone/exposure", 0).toInt());
+  gamma_->setValue(s.value("tone/gamma", 1.0).toDouble());
+}
+
+void MainWindow::SaveSettings() const {
+  QSettings s;
+  s.setValue("window/geometry", saveGeometry());
+  s.setValue("window/state", saveState());
+  s.setValue("source", source_->currentText());
+  s.setValue("engine/tracker", tracker_->currentText());
+  s.setValue("engine/pcf", pcf_->value());
+  s.setValue("engine/device", device_->currentText());
+  s.setValue("engine/voxel", voxel_->currentText());
+  s.setValue("engine/resolution", res_->value());
+  s.setValue("engine/size_m", size_->value());
+  s.setValue("engine/tau0", tau0_->value());
+  s.setValue("engine/tau1", tau1_->value());
+  s.setValue("tone/operator", tone_op_->currentIndex());
+  s.setValue("tone/exposure", exposure_->value());
+  s.setValue("tone/gamma", gamma_->value());
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+  SaveSettings();
+  e->accept();
+}
+
+}  // namespace hdrf::gui

@@ -1,0 +1,112 @@
+// The studio's main window: the 3-D view in the centre, every 2-D view and the control and
+// status panels as dock widgets (movable, floatable, closable, restored from the View menu,
+// layout and settings kept with QSettings), the scan on its own thread.
+#pragma once
+
+#include <QMainWindow>
+#include <QMap>
+#include <QThread>
+#include <memory>
+
+#include "gui/scan_worker.h"
+#include "gui/tone_mapper.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QSlider;
+class QTimer;
+class QDockWidget;
+
+namespace hdrf::gui {
+
+class ImageView;
+class VtkView;
+class ExposurePlot;
+
+struct StudioOptions {
+  QString source;            // empty: the last one used (default: the synthetic room)
+  int frames = 0;            // > 0: stop after this many frames
+  QString screenshot;        // non-empty: run, save the window and a JSON report, quit
+  QString device;            // "", "cpu" or "cuda"
+  bool autostart = false;
+};
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(const StudioOptions& o, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // For tests: the views by name ("colour", "depth", "radiance", "nr", "confidence",
+  // "model_radiance", "model_normals"), the 3-D view, the worker.
+  ImageView* view(const QString& name) const { return views_.value(name, nullptr); }
+  VtkView* view3d() const { return view3d_; }
+  QDockWidget* dock(const QString& name) const { return docks_.value(name, nullptr); }
+  int frames_shown() const { return frames_shown_; }
+  QString health_text() const;
+  QString error_text() const;
+  ScanSettings CurrentSettings() const;
+  // Writes the window as PNG and per-view statistics as JSON beside it (PATH.json).
+  bool SaveScreenshot(const QString& path);
+
+ public slots:
+  void StartScan();
+  void PauseScan();
+  void StopScan();
+  void ResetScan();
+
+ signals:
+  void configure(const hdrf::gui::ScanSettings& s);
+  void start();
+  void pause();
+  void stop();
+  void reset();
+  void exportMesh(const QString& path);
+  void exportTrajectory(const QString& path);
+  void exportRender(const QString& path);
+  void screenshotTaken(bool ok);
+
+ protected:
+  void closeEvent(QCloseEvent* e) override;
+
+ private:
+  void BuildViews();
+  void BuildControls();
+  void BuildStatus();
+  void BuildMenus();
+  void LoadSettings();
+  void SaveSettings() const;
+  void OnSnapshot(std::shared_ptr<const Snapshot> s);
+  void Render();  // the latest snapshot into every visible view (timer)
+  void OnFailed(const QString& message);
+  void ApplyEngineSettings();
+  void FinishScripted();
+
+  StudioOptions opts_;
+  QThread thread_;
+  ScanWorker* worker_ = nullptr;
+  std::unique_ptr<ToneMapper> tone_;
+  ToneSettings tone_settings_;
+  std::shared_ptr<const Snapshot> latest_, shown_;
+  std::shared_ptr<const mesh::Mesh> mesh_shown_;
+  qint64 mesh_time_ms_ = 0;
+  QTimer* render_timer_ = nullptr;
+  QMap<QString, ImageView*> views_;
+  QMap<QString, QDockWidget*> docks_;
+  VtkView* view3d_ = nullptr;
+  ExposurePlot* plot_ = nullptr;
+  QComboBox *source_ = nullptr, *tracker_ = nullptr, *device_ = nullptr, *voxel_ = nullptr, *tone_op_ = nullptr;
+  QSpinBox *pcf_ = nullptr, *res_ = nullptr;
+  QDoubleSpinBox *size_ = nullptr, *tau0_ = nullptr, *tau1_ = nullptr, *gamma_ = nullptr;
+  QSlider* exposure_ = nullptr;
+  QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
+  QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
+  int frames_shown_ = 0;
+  bool scripted_done_ = false;
+  QByteArray default_state_;
+};
+
+}  // namespace hdrf::gui

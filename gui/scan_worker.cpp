@@ -1,0 +1,186 @@
+#include "gui/scan_worker.h"
+
+#include <QTimer>
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+#include "io/exr.h"
+#include "io/ply.h"
+#include "io/source_spec.h"
+#include "io/tum.h"
+
+namespace hdrf::gui {
+
+std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) {
+  // Recorded sequences without a calibrated response fall back to sRGB in the studio (the
+  // status bar says so); the CLI asks for --response srgb explicitly.
+  try {
+    return io::OpenSource(spec, "");
+  } catch (const InputError& e) {
+    if (std::string(e.what()).find("'response'") == std::string::npos) throw;
+    return io::OpenSource(spec, "srgb");
+  }
+}
+
+ScanWorker::ScanWorker() {
+  qRegisterMetaType<hdrf::gui::ScanSettings>();
+  qRegisterMetaType<std::shared_ptr<const hdrf::gui::Snapshot>>();
+}
+
+ScanWorker::~ScanWorker() = default;
+
+void ScanWorker::Open() {
+  source_.reset();
+  pipe_.reset();
+  trajectory_.clear();
+  timestamps_.clear();
+  exp_est_.clear();
+  exp_rep_.clear();
+  mesh_.reset();
+  source_ = OpenFrameSource(settings_.source);
+  pipe_ = std::make_unique<pipeline::Pipeline>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+}
+
+void ScanWorker::Configure(const ScanSettings& s) {
+  running_ = false;
+  settings_ = s;
+  try {
+    Open();
+    QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
+    if (!pipe_->device_note().empty()) msg += " — " + QString::fromStdString(pipe_->device_note());
+    emit stateChanged(false, msg);
+  } catch (const std::exception& e) {
+    source_.reset();
+    pipe_.reset();
+    emit failed(tr("Cannot open the source: %1").arg(QString::fromStdString(e.what())));
+    emit stateChanged(false, tr("No source"));
+  }
+}
+
+void ScanWorker::Start() {
+  if (!pipe_) {
+    try {
+      Open();
+    } catch (const std::exception& e) {
+      emit failed(tr("Cannot open the source: %1").arg(QString::fromStdString(e.what())));
+      return;
+    }
+  }
+  if (running_) return;
+  running_ = true;
+  emit stateChanged(true, tr("Scanning on the %1").arg(pipe_->device() == Device::kCuda ? "GPU" : "CPU"));
+  QTimer::singleShot(0, this, &ScanWorker::Step);
+}
+
+void ScanWorker::Pause() {
+  if (!running_) return;
+  running_ = false;
+  emit stateChanged(false, tr("Paused after %1 frames").arg(pipe_ ? pipe_->frames() : 0));
+}
+
+void ScanWorker::Stop() {
+  running_ = false;
+  // Rewind the source; keep the model (export still possible) until Reset.
+  try {
+    if (pipe_) source_ = OpenFrameSource(settings_.source);
+    emit stateChanged(false, tr("Stopped; the model of %1 frames is kept").arg(pipe_ ? pipe_->frames() : 0));
+  } catch (const std::exception& e) {
+    emit failed(QString::fromStdString(e.what()));
+  }
+}
+
+void ScanWorker::Reset() {
+  running_ = false;
+  try {
+    Open();
+    emit stateChanged(false, tr("Reset: empty model"));
+  } catch (const std::exception& e) {
+    emit failed(QString::fromStdString(e.what()));
+  }
+}
+
+void ScanWorker::Step() {
+  if (!running_ || !pipe_) return;
+  try {
+    pipeline::FrameInput f;
+    if (!source_->Next(f)) {
+      running_ = false;
+      emit finished(pipe_->frames());
+      emit stateChanged(false, tr("Finished: %1 frames").arg(pipe_->frames()));
+      return;
+    }
+    auto s = std::make_shared<Snapshot>();
+    s->report = pipe_->Process(f);
+    trajectory_.push_back(s->report.T_world_camera);
+    timestamps_.push_back(s->report.timestamp);
+    exp_est_.push_back(s->report.exposure_ratio);
+    exp_rep_.push_back(s->report.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+    if (!mesh_ || s->report.index % std::max(1, settings_.mesh_every_frames) == 0)
+      mesh_ = std::make_shared<const mesh::Mesh>(pipe_->ExtractMesh());
+    s->color = std::move(f.color);
+    s->images = pipe_->backend().Download();
+    s->depth = s->images.depth.Clone();
+    s->camera = source_->sensor().camera;
+    s->trajectory = trajectory_;
+    s->exposure_estimated = exp_est_;
+    s->exposure_reported = exp_rep_;
+    s->mesh = mesh_;
+    s->volume_bytes = pipe_->volume_bytes();
+    s->bricks = s->report.allocated_bricks;
+    s->frames_total = source_->size();
+    s->device = DeviceName(pipe_->device());
+    emit snapshot(std::move(s));
+  } catch (const std::exception& e) {
+    running_ = false;
+    emit failed(tr("Scan paused at frame %1: %2. The model so far is kept.")
+                    .arg(pipe_->frames())
+                    .arg(QString::fromStdString(e.what())));
+    emit stateChanged(false, tr("Paused (error)"));
+    return;
+  }
+  QTimer::singleShot(0, this, &ScanWorker::Step);
+}
+
+void ScanWorker::ExportMesh(const QString& path) {
+  cancel_export_ = false;
+  if (!pipe_) {
+    emit exportDone(false, tr("Nothing to export: no model"));
+    return;
+  }
+  try {
+    emit exportProgress(0.05);
+    const mesh::Mesh m = pipe_->ExtractMesh();
+    if (cancel_export_) throw Error("cancelled");
+    emit exportProgress(0.6);
+    io::WritePly(path.toStdString(), m);  // through a temporary file: nothing half-written
+    emit exportProgress(1.0);
+    emit exportDone(true, tr("Wrote %1 (%2 vertices, %3 triangles)").arg(path).arg(m.position.size()).arg(m.triangles.size()));
+  } catch (const std::exception& e) {
+    emit exportDone(false, tr("Mesh export: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::ExportTrajectory(const QString& path) {
+  try {
+    std::vector<io::TimedPose> t;
+    for (std::size_t i = 0; i < trajectory_.size(); ++i) t.push_back({timestamps_[i], trajectory_[i]});
+    io::WriteTrajectory(path.toStdString(), t);
+    emit exportDone(true, tr("Wrote %1 (%2 poses)").arg(path).arg(t.size()));
+  } catch (const std::exception& e) {
+    emit exportDone(false, tr("Trajectory export: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::ExportRender(const QString& path) {
+  try {
+    if (!pipe_) throw Error("no model");
+    const auto r = pipe_->Render(pipe_->pose());
+    io::WriteExr(path.toStdString(), r.radiance);
+    emit exportDone(true, tr("Wrote %1").arg(path));
+  } catch (const std::exception& e) {
+    emit exportDone(false, tr("OpenEXR export: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+}  // namespace hdrf::gui

@@ -1,0 +1,289 @@
+#include "gui/vtk_view.h"
+
+#include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGenericRenderWindowInteractor.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkOpenGLState.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+#include <QSurfaceFormat>
+#include <QWheelEvent>
+
+namespace hdrf::gui {
+
+struct VtkView::Impl {
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkGenericRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  vtkNew<vtkPolyData> mesh, path, frustum;
+  vtkNew<vtkPolyDataMapper> mesh_mapper, path_mapper, frustum_mapper;
+  vtkNew<vtkActor> mesh_actor, path_actor, frustum_actor;
+  vtkNew<vtkCallbackCommand> make_current, is_current, frame;
+};
+
+void VtkView::SetDefaultSurfaceFormat() {
+  QSurfaceFormat f;
+  f.setRenderableType(QSurfaceFormat::OpenGL);
+  f.setVersion(3, 2);
+  f.setProfile(QSurfaceFormat::CoreProfile);
+  f.setRedBufferSize(8);
+  f.setGreenBufferSize(8);
+  f.setBlueBufferSize(8);
+  f.setAlphaBufferSize(8);
+  f.setDepthBufferSize(24);
+  f.setStencilBufferSize(0);
+  f.setSamples(0);
+  QSurfaceFormat::setDefaultFormat(f);
+}
+
+VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<Impl>()) {
+  setMinimumSize(200, 150);
+  setFocusPolicy(Qt::StrongFocus);
+  d_->window->SetReadyForRendering(false);
+  d_->window->SetMultiSamples(0);  // software GL: no multisampling
+  d_->window->AddRenderer(d_->renderer);
+  d_->renderer->SetBackground(0.12, 0.12, 0.14);
+  d_->interactor->SetRenderWindow(d_->window);
+  d_->interactor->SetInteractorStyle(d_->style);
+  // The render window asks the widget to make its context current, whether it is, and
+  // announces finished frames.
+  d_->make_current->SetClientData(this);
+  d_->make_current->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    auto* w = static_cast<VtkView*>(self);
+    if (w->context() && QOpenGLContext::currentContext() != w->context()) w->makeCurrent();
+  });
+  d_->is_current->SetClientData(this);
+  d_->is_current->SetCallback([](vtkObject*, unsigned long, void* self, void* call) {
+    auto* w = static_cast<VtkView*>(self);
+    *static_cast<bool*>(call) = w->context() && QOpenGLContext::currentContext() == w->context();
+  });
+  d_->frame->SetClientData(this);
+  d_->frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) { static_cast<VtkView*>(self)->update(); });
+  d_->window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d_->make_current);
+  d_->window->AddObserver(vtkCommand::WindowIsCurrentEvent, d_->is_current);
+  d_->window->AddObserver(vtkCommand::WindowFrameEvent, d_->frame);
+  // Actors: mesh (vertex colours), trajectory (yellow), frustum (red).
+  d_->mesh_mapper->SetInputData(d_->mesh);
+  d_->mesh_mapper->SetScalarModeToUsePointData();
+  d_->mesh_actor->SetMapper(d_->mesh_mapper);
+  d_->path_mapper->SetInputData(d_->path);
+  d_->path_mapper->ScalarVisibilityOff();
+  d_->path_actor->SetMapper(d_->path_mapper);
+  d_->path_actor->GetProperty()->SetColor(1.0, 0.85, 0.2);
+  d_->path_actor->GetProperty()->SetLineWidth(2);
+  d_->frustum_mapper->SetInputData(d_->frustum);
+  d_->frustum_mapper->ScalarVisibilityOff();
+  d_->frustum_actor->SetMapper(d_->frustum_mapper);
+  d_->frustum_actor->GetProperty()->SetColor(1.0, 0.3, 0.25);
+  d_->frustum_actor->GetProperty()->SetLineWidth(2);
+  d_->renderer->AddActor(d_->mesh_actor);
+  d_->renderer->AddActor(d_->path_actor);
+  d_->renderer->AddActor(d_->frustum_actor);
+}
+
+VtkView::~VtkView() {
+  // Disconnect first: the base destructor must not call back into this half-destroyed view.
+  if (context()) disconnect(context(), nullptr, this, nullptr);
+  makeCurrent();
+  Cleanup();
+  doneCurrent();
+}
+
+void VtkView::Cleanup() {
+  if (d_->window->GetReadyForRendering()) {
+    d_->window->Finalize();
+    d_->window->SetReadyForRendering(false);
+  }
+}
+
+void VtkView::initializeGL() {
+  d_->window->SetOwnContext(false);
+  d_->window->SetFrameBlitModeToNoBlit();
+  d_->window->SetReadyForRendering(true);
+  d_->window->OpenGLInitContext();
+  d_->interactor->Initialize();
+  const qreal r = devicePixelRatioF();
+  d_->window->SetSize(int(width() * r), int(height() * r));
+  d_->interactor->UpdateSize(int(width() * r), int(height() * r));
+  // The context is recreated when the widget is re-parented (floated, docked again).
+  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] {
+    makeCurrent();
+    Cleanup();
+    doneCurrent();
+  });
+  dirty_ = true;
+}
+
+void VtkView::resizeGL(int w, int h) {
+  const qreal r = devicePixelRatioF();
+  d_->window->SetSize(int(w * r), int(h * r));
+  d_->interactor->UpdateSize(int(w * r), int(h * r));
+  dirty_ = true;
+}
+
+void VtkView::paintGL() {
+  if (!d_->window->GetReadyForRendering()) return;
+  if (dirty_) {
+    dirty_ = false;
+    d_->window->Render();
+  }
+  // Copy VTK's last frame into the widget's framebuffer, then make it opaque.
+  vtkOpenGLState* st = d_->window->GetState();
+  st->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+  const int* s = d_->window->GetSize();
+  const qreal r = devicePixelRatioF();
+  d_->window->BlitDisplayFramebuffer(0, 0, 0, s[0], s[1], 0, 0, int(width() * r), int(height() * r),
+                                     GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  st->vtkglColorMask(false, false, false, true);
+  st->vtkglClearColor(0, 0, 0, 1);
+  st->vtkglClear(GL_COLOR_BUFFER_BIT);
+  st->vtkglColorMask(true, true, true, true);
+}
+
+void VtkView::SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours) {
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();
+  pts->SetNumberOfPoints(vtkIdType(m.position.size()));
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(vtkIdType(m.position.size()));
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("Colors");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(vtkIdType(m.position.size()));
+  for (std::size_t i = 0; i < m.position.size(); ++i) {
+    pts->SetPoint(vtkIdType(i), m.position[i].x, m.position[i].y, m.position[i].z);
+    normals->SetTuple3(vtkIdType(i), m.normal[i].x, m.normal[i].y, m.normal[i].z);
+    const Rgb8 c = i < colours.size() ? colours[i] : Rgb8{180, 180, 180};
+    rgb->SetTuple3(vtkIdType(i), c.r, c.g, c.b);
+  }
+  vtkNew<vtkCellArray> tris;
+  for (const auto& t : m.triangles) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    tris->InsertNextCell(3, ids);
+  }
+  d_->mesh->SetPoints(pts);
+  d_->mesh->SetPolys(tris);
+  d_->mesh->GetPointData()->SetScalars(rgb);
+  d_->mesh->GetPointData()->SetNormals(normals);
+  d_->mesh->Modified();
+  triangles_ = m.triangles.size();
+  if (first_mesh_ && triangles_ > 0) {
+    first_mesh_ = false;
+    ResetView();
+  }
+  dirty_ = true;
+  update();
+}
+
+void VtkView::SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera& cam) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> line;
+  if (!poses.empty()) {
+    line->InsertNextCell(vtkIdType(poses.size()));
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const Vec3 t = poses[i].translation();
+      pts->InsertNextPoint(t.x(), t.y(), t.z());
+      line->InsertCellPoint(vtkIdType(i));
+    }
+  }
+  d_->path->SetPoints(pts);
+  d_->path->SetLines(line);
+  d_->path->Modified();
+  // Frustum of the current pose: the image corners at 0.3 m.
+  vtkNew<vtkPoints> fp;
+  vtkNew<vtkCellArray> fl;
+  if (!poses.empty() && cam.Valid()) {
+    const Pose& T = poses.back();
+    const double z = 0.3;
+    const double u[4] = {0, double(cam.width - 1), double(cam.width - 1), 0};
+    const double v[4] = {0, 0, double(cam.height - 1), double(cam.height - 1)};
+    const Vec3 o = T.translation();
+    fp->InsertNextPoint(o.x(), o.y(), o.z());
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 p = T * Vec3((u[k] - cam.cx) / cam.fx * z, (v[k] - cam.cy) / cam.fy * z, z);
+      fp->InsertNextPoint(p.x(), p.y(), p.z());
+    }
+    for (int k = 1; k <= 4; ++k) {
+      const vtkIdType a[2] = {0, k}, b[2] = {k, k % 4 + 1};
+      fl->InsertNextCell(2, a);
+      fl->InsertNextCell(2, b);
+    }
+  }
+  d_->frustum->SetPoints(fp);
+  d_->frustum->SetLines(fl);
+  d_->frustum->Modified();
+  dirty_ = true;
+  update();
+}
+
+void VtkView::ResetView() {
+  // Looking along the first camera's axis (y down in camera coordinates: up is -y).
+  vtkCamera* c = d_->renderer->GetActiveCamera();
+  c->SetPosition(0, 0, -1);
+  c->SetFocalPoint(0, 0, 1);
+  c->SetViewUp(0, -1, 0);
+  d_->renderer->ResetCamera();
+  dirty_ = true;
+  update();
+}
+
+QImage VtkView::Capture() {
+  dirty_ = true;
+  return grabFramebuffer();
+}
+
+void VtkView::SetEventInfo(QMouseEvent* e) {
+  const qreal r = devicePixelRatioF();
+  d_->interactor->SetEventInformationFlipY(int(e->position().x() * r), int(e->position().y() * r),
+                                           (e->modifiers() & Qt::ControlModifier) ? 1 : 0,
+                                           (e->modifiers() & Qt::ShiftModifier) ? 1 : 0);
+}
+
+void VtkView::mousePressEvent(QMouseEvent* e) {
+  SetEventInfo(e);
+  switch (e->button()) {
+    case Qt::LeftButton: d_->interactor->InvokeEvent(vtkCommand::LeftButtonPressEvent); break;
+    case Qt::MiddleButton: d_->interactor->InvokeEvent(vtkCommand::MiddleButtonPressEvent); break;
+    case Qt::RightButton: d_->interactor->InvokeEvent(vtkCommand::RightButtonPressEvent); break;
+    default: break;
+  }
+}
+void VtkView::mouseReleaseEvent(QMouseEvent* e) {
+  SetEventInfo(e);
+  switch (e->button()) {
+    case Qt::LeftButton: d_->interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent); break;
+    case Qt::MiddleButton: d_->interactor->InvokeEvent(vtkCommand::MiddleButtonReleaseEvent); break;
+    case Qt::RightButton: d_->interactor->InvokeEvent(vtkCommand::RightButtonReleaseEvent); break;
+    default: break;
+  }
+}
+void VtkView::mouseMoveEvent(QMouseEvent* e) {
+  SetEventInfo(e);
+  d_->interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+}
+void VtkView::wheelEvent(QWheelEvent* e) {
+  const qreal r = devicePixelRatioF();
+  d_->interactor->SetEventInformationFlipY(int(e->position().x() * r), int(e->position().y() * r));
+  d_->interactor->InvokeEvent(e->angleDelta().y() > 0 ? vtkCommand::MouseWheelForwardEvent
+                                                       : vtkCommand::MouseWheelBackwardEvent);
+}
+
+}  // namespace hdrf::gui

@@ -1,0 +1,54 @@
+// The 3-D inspection view: VTK rendering hosted in a Qt 6 QOpenGLWidget through
+// vtkGenericOpenGLRenderWindow (Debian's VTK Qt module is built for Qt 5 and is never
+// linked). Shows the growing mesh with tone-mapped HDR colour, the camera trajectory and
+// the current frustum; trackball orbit (left), pan (middle or shift+left), zoom (wheel).
+#pragma once
+
+#include <QOpenGLWidget>
+#include <memory>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/image.h"
+#include "common/se3.h"
+#include "mesh/mesh.h"
+
+namespace hdrf::gui {
+
+class VtkView : public QOpenGLWidget {
+  Q_OBJECT
+ public:
+  explicit VtkView(QWidget* parent = nullptr);
+  ~VtkView() override;
+
+  // The mesh with one display colour per vertex.
+  void SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours);
+  void SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera& cam);
+  void ResetView();
+  std::size_t mesh_triangles() const { return triangles_; }
+  // The last rendered frame (for tests and screenshots).
+  QImage Capture();
+
+  // Sets the default OpenGL surface format VTK needs; call before QApplication exists.
+  static void SetDefaultSurfaceFormat();
+
+ protected:
+  void initializeGL() override;
+  void resizeGL(int w, int h) override;
+  void paintGL() override;
+  void mousePressEvent(QMouseEvent* e) override;
+  void mouseReleaseEvent(QMouseEvent* e) override;
+  void mouseMoveEvent(QMouseEvent* e) override;
+  void wheelEvent(QWheelEvent* e) override;
+
+ private:
+  void Cleanup();
+  void SetEventInfo(QMouseEvent* e);
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+  bool dirty_ = true;
+  bool first_mesh_ = true;
+  std::size_t triangles_ = 0;
+};
+
+}  // namespace hdrf::gui

@@ -1,0 +1,249 @@
+// Studio widgets without a display (QT_QPA_PLATFORM=offscreen): tone mapping through the
+// shipped OpenColorIO config, the image views' readout and saving, the exposure plot, and
+// the scan worker on its thread (snapshots, errors pause and keep the model, exports).
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QThread>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "gui/exposure_plot.h"
+#include "gui/image_view.h"
+#include "gui/scan_worker.h"
+#include "gui/tone_mapper.h"
+#include "io/exr.h"
+#include "io/ply.h"
+#include "io/sequence.h"
+#include "sim/synthetic_source.h"
+
+namespace hdrf::gui {
+namespace {
+
+float SrgbCurve(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.f / 2.4f) - 0.055f; }
+
+TEST(ToneMapper, OcioDisplayTransformIsTheSrgbCurve) {
+  ToneMapper tm;
+  EXPECT_EQ(tm.display(), "sRGB");
+  EXPECT_EQ(tm.view(), "Standard");
+  std::vector<float> v;
+  for (int i = 0; i <= 1000; ++i) v.insert(v.end(), 3, float(i) / 1000.f);
+  std::vector<float> out = v;
+  tm.DisplayTransform(out.data(), long(v.size() / 3));
+  double worst = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) worst = std::max(worst, double(std::abs(out[i] - SrgbCurve(v[i]))));
+  EXPECT_LE(worst, 1e-5);
+  EXPECT_GT(out[3 * 500], 0.7f);  // 0.5 linear is ~0.735 encoded: really a curve
+}
+
+TEST(ToneMapper, ExposureOperatorAndBadPixels) {
+  ToneMapper tm;
+  RadianceImage r(4, 1);
+  r[0] = {0.1f, 0.1f, 0.1f};
+  r[1] = {1.f, 1.f, 1.f};
+  r[2] = {std::nanf(""), 1.f, 1.f};  // non-finite: black
+  r[3] = {0, 0, 0};                   // no data: black
+  ToneSettings s;
+  s.op = ToneSettings::Operator::kLinear;
+  const QImage a = tm.Map(r, s);
+  s.exposure_stops = 1;
+  const QImage b = tm.Map(r, s);
+  EXPECT_GT(qGray(b.pixel(0, 0)), qGray(a.pixel(0, 0)));  // one stop brighter
+  EXPECT_EQ(a.pixel(2, 0), qRgb(0, 0, 0));
+  EXPECT_EQ(a.pixel(3, 0), qRgb(0, 0, 0));
+  s.exposure_stops = 6;
+  EXPECT_EQ(qGray(tm.Map(r, s).pixel(1, 0)), 255);  // linear clips
+  s.op = ToneSettings::Operator::kReinhard;
+  EXPECT_LT(qGray(tm.Map(r, s).pixel(1, 0)), 255);  // Reinhard compresses
+  // Mesh colours use the same mapping.
+  const auto c = tm.MapColours({{0.1f, 0.1f, 0.1f}, {1.f, 1.f, 1.f}}, ToneSettings{});
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_LT(c[0].g, c[1].g);
+}
+
+TEST(ToneMapper, UnreadableConfigNamesTheFile) {
+  try {
+    ToneMapper tm("/nonexistent/config.ocio");
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/config.ocio"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImageView, ReadoutInPhysicalUnitsAndSaving) {
+  ImageView v("Depth");
+  v.resize(400, 300);
+  v.show();
+  QImage img(40, 30, QImage::Format_RGB888);
+  img.fill(Qt::black);
+  for (int x = 0; x < 40; ++x) img.setPixel(x, 10, qRgb(6 * x, 6 * x, 6 * x));
+  v.SetImage(img, [](int x, int y) { return QStringLiteral("depth %1 m").arg(0.1 * x + y, 0, 'f', 3); });
+  EXPECT_EQ(v.ValueAt(5, 2), "(5, 2)  depth 2.500 m");
+  EXPECT_TRUE(v.ValueAt(40, 2).isEmpty());
+  // Moving the mouse over the middle of the widget reads the pixel under it.
+  QTest::mouseMove(&v, QPoint(200, 140));
+  EXPECT_TRUE(v.readout().contains("depth")) << v.readout().toStdString();
+  EXPECT_GT(v.DistinctLevels(), 10);
+  QTemporaryDir dir;
+  EXPECT_TRUE(v.SavePng(dir.filePath("d.png")));
+  EXPECT_EQ(QImage(dir.filePath("d.png")).size(), QSize(40, 30));
+  EXPECT_FALSE(v.HasHdr());
+  EXPECT_THROW(v.SaveExr(dir.filePath("d.exr")), std::exception);
+  // An HDR view saves its data, not its display image.
+  RadianceImage rad(3, 2, Float3{2.5f, 100.f, 0.01f});
+  v.SetImage(img, {}, [&rad](const QString& p) { io::WriteExr(p.toStdString(), rad, io::ExrPrecision::kFloat); });
+  ASSERT_TRUE(v.HasHdr());
+  v.SaveExr(dir.filePath("r.exr"));
+  const RadianceImage back = io::ReadExr(dir.filePath("r.exr").toStdString());
+  EXPECT_FLOAT_EQ(back(2, 1).y, 100.f);
+  // A uniform image has one level.
+  QImage flat(20, 20, QImage::Format_RGB888);
+  flat.fill(Qt::gray);
+  v.SetImage(flat, {});
+  EXPECT_EQ(v.DistinctLevels(), 1);
+}
+
+TEST(ExposurePlot, KeepsTheLastFramesOfBothSeries) {
+  ExposurePlot p;
+  std::vector<double> est, rep;
+  for (int i = 0; i < 500; ++i) {
+    est.push_back(std::exp2(std::sin(i * 0.1)));
+    rep.push_back(i % 7 == 0 ? std::nan("") : std::exp2(std::sin(i * 0.1)));
+  }
+  p.SetSeries(est, rep);
+  EXPECT_EQ(p.points(), 200);
+  p.resize(300, 100);
+  const QImage img = p.grab().toImage();
+  ImageView probe("plot");
+  probe.SetImage(img, {});
+  EXPECT_GT(probe.DistinctLevels(), 3);  // the curves were drawn
+}
+
+// Runs the worker on its own thread, as the studio does.
+class WorkerOnThread {
+ public:
+  WorkerOnThread() {
+    w = new ScanWorker;
+    w->moveToThread(&t);
+    QObject::connect(&t, &QThread::finished, w, &QObject::deleteLater);
+    t.start();
+  }
+  ~WorkerOnThread() {
+    QMetaObject::invokeMethod(w, &ScanWorker::Pause, Qt::BlockingQueuedConnection);
+    t.quit();
+    t.wait();
+  }
+  template <typename F>
+  void Call(F f) {
+    QMetaObject::invokeMethod(w, f, Qt::QueuedConnection);
+  }
+  QThread t;
+  ScanWorker* w;
+};
+
+TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
+  WorkerOnThread wt;
+  std::vector<std::shared_ptr<const Snapshot>> got;
+  QObject ctx;
+  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
+  QSignalSpy finished(wt.w, &ScanWorker::finished);
+  ScanSettings s;
+  s.source = "synthetic:frames=12,size=160x120,ae=flicker";
+  s.pipeline.volume.resolution = 128;
+  s.mesh_every_frames = 5;
+  wt.Call([&wt, s] { wt.w->Configure(s); });
+  wt.Call([&wt] { wt.w->Start(); });
+  ASSERT_TRUE(finished.wait(120000));
+  QCoreApplication::processEvents();
+  ASSERT_EQ(got.size(), 12u);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i]->report.index, int(i));
+    EXPECT_EQ(got[i]->trajectory.size(), i + 1);
+    EXPECT_EQ(got[i]->images.radiance.width(), 160);
+    EXPECT_EQ(got[i]->color.width(), 160);
+  }
+  ASSERT_TRUE(got.back()->mesh);
+  EXPECT_GT(got.back()->mesh->triangles.size(), 1000u);
+  EXPECT_GT(got.back()->volume_bytes, 0u);
+  // Snapshots are independent copies: the first is untouched by later frames.
+  EXPECT_EQ(got[0]->trajectory.size(), 1u);
+}
+
+TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
+  QTemporaryDir dir;
+  const std::filesystem::path seq = dir.filePath("seq").toStdString();
+  {
+    sim::SimOptions o;
+    o.width = 160;
+    o.height = 120;
+    o.frames = 8;
+    sim::SyntheticSource src(o);
+    io::SequenceWriter writer(seq, src.sensor());
+    while (!src.done()) {
+      const sim::SimFrame f = src.Next();
+      writer.Add(f.timestamp, f.color, &f.depth, f.exposure_ms, f.T_world_camera, nullptr);
+    }
+  }
+  // Frame 5's colour image becomes garbage.
+  std::vector<std::filesystem::path> rgb;
+  for (const auto& e : std::filesystem::directory_iterator(seq / "rgb")) rgb.push_back(e.path());
+  std::sort(rgb.begin(), rgb.end());
+  ASSERT_EQ(rgb.size(), 8u);
+  std::ofstream(rgb[5], std::ios::binary | std::ios::trunc) << "not a png";
+  WorkerOnThread wt;
+  int frames = 0;
+  QObject ctx;
+  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot>) { ++frames; });
+  QSignalSpy failed(wt.w, &ScanWorker::failed);
+  ScanSettings s;
+  s.source = seq.string();
+  s.pipeline.volume.resolution = 128;
+  wt.Call([&wt, s] { wt.w->Configure(s); });
+  wt.Call([&wt] { wt.w->Start(); });
+  ASSERT_TRUE(failed.wait(60000));
+  QCoreApplication::processEvents();
+  const QString msg = failed.takeFirst().at(0).toString();
+  EXPECT_TRUE(msg.contains(QString::fromStdString(rgb[5].filename().string()))) << msg.toStdString();
+  EXPECT_TRUE(msg.contains("kept")) << msg.toStdString();
+  EXPECT_EQ(frames, 5);
+  // The model of the five good frames is still there: export it.
+  QSignalSpy done(wt.w, &ScanWorker::exportDone);
+  const QString ply = dir.filePath("model.ply");
+  wt.Call([&wt, ply] { wt.w->ExportMesh(ply); });
+  ASSERT_TRUE(done.wait(60000));
+  EXPECT_TRUE(done.takeFirst().at(0).toBool());
+  const mesh::Mesh m = io::ReadPly(ply.toStdString());
+  EXPECT_GT(m.triangles.size(), 1000u);
+  // A trajectory and an OpenEXR render too.
+  wt.Call([&wt, &dir] { wt.w->ExportTrajectory(dir.filePath("t.txt")); });
+  ASSERT_TRUE(done.wait(10000));
+  EXPECT_TRUE(done.takeFirst().at(0).toBool());
+  wt.Call([&wt, &dir] { wt.w->ExportRender(dir.filePath("r.exr")); });
+  ASSERT_TRUE(done.wait(10000));
+  EXPECT_TRUE(done.takeFirst().at(0).toBool());
+  EXPECT_EQ(io::ReadExr(dir.filePath("r.exr").toStdString()).width(), 160);
+}
+
+TEST(ScanWorker, AMissingSourceIsReportedNotFatal) {
+  WorkerOnThread wt;
+  QSignalSpy failed(wt.w, &ScanWorker::failed);
+  ScanSettings s;
+  s.source = "/nonexistent/sequence";
+  wt.Call([&wt, s] { wt.w->Configure(s); });
+  ASSERT_TRUE(failed.wait(10000));
+  EXPECT_TRUE(failed.takeFirst().at(0).toString().contains("/nonexistent/sequence"));
+}
+
+}  // namespace
+}  // namespace hdrf::gui
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
+  return RUN_ALL_TESTS();
+}
