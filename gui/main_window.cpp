@@ -210,6 +210,8 @@ void MainWindow::BuildControls() {
   std::string why;
   if (!CudaAvailable(&why)) {
     device_->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
+  } else {
+    device_->setCurrentIndex(1);  // the CUDA backend is used when present
   }
   voxel_ = new QComboBox;
   voxel_->addItems({"compact", "no-nr", "full"});

@@ -42,6 +42,17 @@ HDRF_HD double HuberWeight(double r_scaled, double k) {
   return a <= k ? 1.0 : k / a;
 }
 
+// Adds one robustly weighted term: J and r are already scaled by `s`; `first` is the index
+// of the term kind's residual sum in GnSystem::v (27: ICP, 28: photometric), followed two
+// and four places on by its weight sum and count.
+HDRF_HD void AddRobustTerm(GnSystem& acc, const double J[6], double r, double s, double huber_k, int first) {
+  const double wgt = HuberWeight(r * s, huber_k);
+  acc.Add(J, r * s, wgt);
+  acc.v[first] += wgt * r * r;
+  acc.v[first + 2] += wgt;
+  acc.v[first + 4] += 1;
+}
+
 // Point-to-plane ICP: live vertex (camera frame) against the reference vertex and normal
 // (world frame) found by projecting into the reference camera.
 struct IcpArgs {
@@ -78,11 +89,7 @@ HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
   const double s = a.inv_sigma;
   const double J[6] = {ax * s, ay * s, az * s, (vy * az - vz * ay) * s, (vz * ax - vx * az) * s,
                        (vx * ay - vy * ax) * s};
-  const double wgt = HuberWeight(r * s, a.huber_k);
-  acc.Add(J, r * s, wgt);
-  acc.icp_r2() += wgt * r * r;
-  acc.icp_w() += wgt;
-  acc.icp_n() += 1;
+  AddRobustTerm(acc, J, r, s, a.huber_k, 27);
   return true;
 }
 
@@ -119,11 +126,7 @@ HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, GnSystem& acc) {
   const double s = double(wl / a.photo_sigma);
   const double J[6] = {gu * s, gv * s, dz * s, (qy * dz - qz * gv) * s, (qz * gu - qx * dz) * s,
                        (qx * gv - qy * gu) * s};
-  const double wgt = HuberWeight(r * s, a.huber_k);
-  acc.Add(J, r * s, wgt);
-  acc.photo_r2() += wgt * r * r;
-  acc.photo_w() += wgt;
-  acc.photo_n() += 1;
+  AddRobustTerm(acc, J, r, s, a.huber_k, 28);
   return true;
 }
 
