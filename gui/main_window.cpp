@@ -109,7 +109,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   });
   connect(worker_, &ScanWorker::exportDone, this, [this](bool ok, const QString& msg) {
     statusBar()->showMessage(msg, 10000);
-    if (!ok) QMessageBox::warning(this, tr("Export"), msg);
+    if (!ok && !msg.contains(tr("cancelled"))) QMessageBox::warning(this, tr("Export"), msg);
   });
   connect(worker_, &ScanWorker::finished, this, [this](int) {
     if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);

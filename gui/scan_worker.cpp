@@ -149,13 +149,16 @@ void ScanWorker::ExportMesh(const QString& path) {
     return;
   }
   try {
-    emit exportProgress(0.05);
-    const mesh::Mesh m = pipe_->ExtractMesh();
-    if (cancel_export_) throw Error("cancelled");
-    emit exportProgress(0.6);
+    const mesh::Mesh m = pipe_->ExtractMesh([this](double f) {
+      emit exportProgress(0.9 * f);
+      return !cancel_export_;
+    });
+    if (cancel_export_) throw Cancelled();
     io::WritePly(path.toStdString(), m);  // through a temporary file: nothing half-written
     emit exportProgress(1.0);
     emit exportDone(true, tr("Wrote %1 (%2 vertices, %3 triangles)").arg(path).arg(m.position.size()).arg(m.triangles.size()));
+  } catch (const Cancelled&) {
+    emit exportDone(false, tr("Mesh export cancelled; nothing was written"));
   } catch (const std::exception& e) {
     emit exportDone(false, tr("Mesh export: %1").arg(QString::fromStdString(e.what())));
   }

@@ -38,4 +38,10 @@ class SettingError : public Error {
       : Error("setting '" + setting + "': " + what) {}
 };
 
+// Long work stopped because the user asked (a progress callback said so).
+class Cancelled : public Error {
+ public:
+  Cancelled() : Error("cancelled") {}
+};
+
 }  // namespace hdrf

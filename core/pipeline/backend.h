@@ -3,6 +3,7 @@
 // CUDA backend. A backend holds the frame's images and the model wherever it computes.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,7 +71,8 @@ class Backend {
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;
   virtual const volume::Volume& HostVolume() = 0;
   // The model's surface (marching tetrahedra, mesh_impl.h), extracted where the model lives.
-  virtual mesh::Mesh ExtractMesh() = 0;
+  // `progress(fraction)` returning false cancels: hdrf::Cancelled is thrown.
+  virtual mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) = 0;
   virtual FrameImages Download() = 0;
 };
 

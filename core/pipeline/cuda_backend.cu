@@ -175,7 +175,7 @@ class CudaBackend final : public Backend {
   void Synchronize() override { cuda::Synchronize(); }
   volume::Volume::Rendering Render(const Pose& T_world_camera) override;
   const volume::Volume& HostVolume() override;
-  mesh::Mesh ExtractMesh() override;
+  mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override;
   template <typename V>
   mesh::Mesh ExtractMeshT();
   FrameImages Download() override;
@@ -724,12 +724,17 @@ FrameImages CudaBackend::Download() {
   return f;
 }
 
-mesh::Mesh CudaBackend::ExtractMesh() {
+mesh::Mesh CudaBackend::ExtractMesh(const std::function<bool(double)>& progress) {
+  // On the GPU the extraction takes milliseconds: progress at its start and end only.
+  if (progress && !progress(0.0)) throw Cancelled();
+  mesh::Mesh m;
   switch (o_.volume.encoding) {
-    case volume::VoxelEncoding::kNoNr: return ExtractMeshT<volume::NoNrVoxel>();
-    case volume::VoxelEncoding::kCompact: return ExtractMeshT<volume::CompactVoxel>();
-    default: return ExtractMeshT<volume::FullVoxel>();
+    case volume::VoxelEncoding::kNoNr: m = ExtractMeshT<volume::NoNrVoxel>(); break;
+    case volume::VoxelEncoding::kCompact: m = ExtractMeshT<volume::CompactVoxel>(); break;
+    default: m = ExtractMeshT<volume::FullVoxel>();
   }
+  if (progress && !progress(1.0)) throw Cancelled();
+  return m;
 }
 
 template <typename V>

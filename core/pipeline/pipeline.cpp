@@ -113,7 +113,15 @@ class CpuBackend final : public Backend {
     return r;
   }
   const volume::Volume& HostVolume() override { return volume_; }
-  mesh::Mesh ExtractMesh() override { return mesh::ExtractMesh(volume_); }
+  mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
+    if (!progress) return mesh::ExtractMesh(volume_);
+    return mesh::ExtractMesh(
+        volume_,
+        [](double f, void* user) {
+          if (!(*static_cast<const std::function<bool(double)>*>(user))(f)) throw Cancelled();
+        },
+        const_cast<std::function<bool(double)>*>(&progress));
+  }
   FrameImages Download() override {
     FrameImages f;
     f.radiance = radiance_.Clone();
@@ -209,7 +217,9 @@ Pipeline::~Pipeline() = default;
 
 volume::Volume::Rendering Pipeline::Render(const Pose& T) const { return backend_->Render(T); }
 const volume::Volume& Pipeline::volume() const { return backend_->HostVolume(); }
-mesh::Mesh Pipeline::ExtractMesh() const { return backend_->ExtractMesh(); }
+mesh::Mesh Pipeline::ExtractMesh(const std::function<bool(double)>& progress) const {
+  return backend_->ExtractMesh(progress);
+}
 std::size_t Pipeline::volume_bytes() const { return backend_->VolumeBytes(); }
 Backend& Pipeline::backend() const { return *backend_; }
 

@@ -3,6 +3,7 @@
 // calls it directly, the studio will wrap it in a thread.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,7 +69,9 @@ class Pipeline {
   // The model (a host copy, refreshed on each call after new frames, on the CUDA backend).
   const volume::Volume& volume() const;
   std::size_t volume_bytes() const;
-  mesh::Mesh ExtractMesh() const;  // on the device the model lives on  // voxel pool + brick index, where the model lives
+  // The surface, extracted on the device the model lives on; `progress(fraction)` returning
+  // false cancels (throws hdrf::Cancelled).
+  mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) const;
   const PipelineOptions& options() const { return o_; }
   Device device() const { return device_; }  // where the engine actually runs
   // Why the engine runs elsewhere than asked ("" when it runs where asked).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <QApplication>
+#include <QFile>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
@@ -218,6 +219,17 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   EXPECT_TRUE(done.takeFirst().at(0).toBool());
   const mesh::Mesh m = io::ReadPly(ply.toStdString());
   EXPECT_GT(m.triangles.size(), 1000u);
+  // Cancelling a mesh export (here: as soon as progress is first reported) writes nothing.
+  auto cancel = QObject::connect(wt.w, &ScanWorker::exportProgress, wt.w, [&wt](double) { wt.w->CancelExport(); },
+                                 Qt::DirectConnection);
+  const QString ply2 = dir.filePath("cancelled.ply");
+  wt.Call([&wt, ply2] { wt.w->ExportMesh(ply2); });
+  ASSERT_TRUE(done.wait(60000));
+  const QList<QVariant> c = done.takeFirst();
+  EXPECT_FALSE(c.at(0).toBool());
+  EXPECT_TRUE(c.at(1).toString().contains("cancelled")) << c.at(1).toString().toStdString();
+  EXPECT_FALSE(QFile::exists(ply2));
+  QObject::disconnect(cancel);
   // A trajectory and an OpenEXR render too.
   wt.Call([&wt, &dir] { wt.w->ExportTrajectory(dir.filePath("t.txt")); });
   ASSERT_TRUE(done.wait(10000));
