@@ -1,5 +1,6 @@
 #include "gui/scan_worker.h"
 
+#include <QDateTime>
 #include <QTimer>
 #include <cmath>
 #include <limits>
@@ -116,8 +117,14 @@ void ScanWorker::Step() {
     timestamps_.push_back(s->report.timestamp);
     exp_est_.push_back(s->report.exposure_ratio);
     exp_rep_.push_back(s->report.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
-    if (!mesh_ || s->report.index % std::max(1, settings_.mesh_every_frames) == 0)
+    const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
+    const bool last = source_->size() > 0 && s->report.index + 1 >= source_->size();
+    if (!mesh_ || last ||
+        (s->report.index % std::max(1, settings_.mesh_every_frames) == 0 &&
+         now - mesh_time_ms_ >= settings_.mesh_min_interval_ms)) {
       mesh_ = std::make_shared<const mesh::Mesh>(pipe_->ExtractMesh());
+      mesh_time_ms_ = now;
+    }
     s->color = std::move(f.color);
     s->images = pipe_->backend().Download();
     s->depth = s->images.depth.Clone();

@@ -21,7 +21,10 @@ namespace hdrf::gui {
 struct ScanSettings {
   std::string source = "synthetic:scene=room,frames=300,ae=flicker";  // as `hdrfusion scan` takes it
   pipeline::PipelineOptions pipeline;
-  int mesh_every_frames = 15;  // refresh of the 3-D view's mesh
+  // Refresh of the 3-D view's mesh: every this many frames, and no more often than
+  // mesh_min_interval_ms (fast GPU scans would otherwise spend their time meshing).
+  int mesh_every_frames = 15;
+  int mesh_min_interval_ms = 500;
 };
 
 // What one processed frame leaves for the views (all host copies, never modified).
@@ -77,6 +80,7 @@ class ScanWorker : public QObject {
   std::vector<Pose> trajectory_;
   std::vector<double> timestamps_, exp_est_, exp_rep_;
   std::shared_ptr<const mesh::Mesh> mesh_;
+  std::int64_t mesh_time_ms_ = 0;
   bool running_ = false;
   std::atomic<bool> cancel_export_{false};
 };

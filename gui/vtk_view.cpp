@@ -7,6 +7,7 @@
 #include <vtkCommand.h>
 #include <vtkFloatArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkIdTypeArray.h>
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
@@ -174,11 +175,17 @@ void VtkView::SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours) {
     const Rgb8 c = i < colours.size() ? colours[i] : Rgb8{180, 180, 180};
     rgb->SetTuple3(vtkIdType(i), c.r, c.g, c.b);
   }
-  vtkNew<vtkCellArray> tris;
-  for (const auto& t : m.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    tris->InsertNextCell(3, ids);
+  // Triangles as one offsets array and one connectivity array (no per-cell insertion).
+  vtkNew<vtkIdTypeArray> offsets, conn;
+  offsets->SetNumberOfValues(vtkIdType(m.triangles.size()) + 1);
+  conn->SetNumberOfValues(3 * vtkIdType(m.triangles.size()));
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    offsets->SetValue(vtkIdType(i), 3 * vtkIdType(i));
+    for (int k = 0; k < 3; ++k) conn->SetValue(3 * vtkIdType(i) + k, m.triangles[i][std::size_t(k)]);
   }
+  offsets->SetValue(vtkIdType(m.triangles.size()), 3 * vtkIdType(m.triangles.size()));
+  vtkNew<vtkCellArray> tris;
+  tris->SetData(offsets, conn);
   d_->mesh->SetPoints(pts);
   d_->mesh->SetPolys(tris);
   d_->mesh->GetPointData()->SetScalars(rgb);

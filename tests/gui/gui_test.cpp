@@ -156,6 +156,7 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   s.source = "synthetic:frames=12,size=160x120,ae=flicker";
   s.pipeline.volume.resolution = 128;
   s.mesh_every_frames = 5;
+  s.mesh_min_interval_ms = 0;
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
   ASSERT_TRUE(finished.wait(120000));

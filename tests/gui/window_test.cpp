@@ -31,8 +31,17 @@ namespace {
 
 bool HaveDisplay() { return !qEnvironmentVariableIsEmpty("DISPLAY"); }
 
+// Each window test starts from empty settings (main() points XDG_CONFIG_HOME at a private
+// folder for the whole process: QSettings reads that path once).
+void FreshSettings() {
+  QSettings s;
+  s.clear();
+  s.sync();
+}
+
 TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
   StudioOptions o;
   o.source = "synthetic:frames=20,size=160x120";
   MainWindow w(o);
@@ -55,8 +64,7 @@ TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
 
 TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
-  QTemporaryDir cfg;
-  qputenv("XDG_CONFIG_HOME", cfg.path().toUtf8());
+  FreshSettings();
   {
     StudioOptions o;
     o.source = "synthetic:frames=15,size=160x120,ae=flicker";
@@ -88,6 +96,7 @@ TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
 
 TEST(StudioWindow, ASourceErrorShowsAMessage) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
   StudioOptions o;
   o.source = "/nonexistent/sequence-folder";
   MainWindow w(o);
@@ -156,6 +165,8 @@ int main(int argc, char** argv) {
   }
   ::testing::InitGoogleTest(&argc, argv);
   if (listing || qEnvironmentVariableIsEmpty("DISPLAY")) return RUN_ALL_TESTS();
+  QTemporaryDir config;  // never the user's own studio settings
+  qputenv("XDG_CONFIG_HOME", config.path().toUtf8());
   hdrf::gui::VtkView::SetDefaultSurfaceFormat();
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusionTest");
