@@ -21,16 +21,24 @@ Command AddBenchCommand(CLI::App& app) {
     std::string suite = "sim";
     int frames = 60;
     std::string device = "both";
+    std::string out = "docs/results";
+    int pairs = 10;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
-  cmd->add_option("--suite", a->suite, "sim (the synthetic sensor) or engine (per-stage times)")
-      ->check(CLI::IsMember({"sim", "engine"}))->capture_default_str();
+  cmd->add_option("--suite", a->suite,
+                  "sim (the synthetic sensor), engine (per-stage times) or landscape (error functions "
+                  "around the true pose, the paper's figure)")
+      ->check(CLI::IsMember({"sim", "engine", "landscape"}))->capture_default_str();
+  cmd->add_option("--out", a->out, "landscape: output folder")->capture_default_str();
+  cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
+      ->capture_default_str();
   cmd->add_option("--frames", a->frames, "Frames per measurement")->check(CLI::Range(5, 100000))
       ->capture_default_str();
   cmd->add_option("--device", a->device, "Engine suite: cpu, cuda or both (CUDA rows where a GPU is usable)")
       ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
   return {cmd, [a] {
+    if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
     if (a->suite == "engine") {
       pipeline::EngineBenchOptions o;
       o.frames = a->frames;

@@ -23,4 +23,7 @@ Command AddMergeCommand(CLI::App& app);
 Command AddScanCommand(CLI::App& app);
 Command AddEvalCommand(CLI::App& app);
 
+// The error-landscape figure (cmd_landscape.cpp), run by `bench --suite landscape`.
+int RunLandscape(const std::string& out_dir, int pairs, int steps);
+
 }  // namespace hdrf::cli

@@ -3,7 +3,11 @@
 
 #include <array>
 #include <cstdio>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -179,6 +183,34 @@ TEST(Cli, CalibrateRefusesASweepWithoutExposures) {
   EXPECT_NE(r.output.find("exposure.txt"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("missing"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "s.json"));
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// The error-landscape figure: around the true pose of flickering frame pairs, the
+// normalized-radiance and ICP error functions have their minimum at the truth and rise away
+// from it.
+TEST(Cli, ErrorLandscapeHasItsMinimumAtTheTruthForNormalizedRadianceAndIcp) {
+  test::TempDir tmp;
+  const std::string dir = (tmp / "landscape").string();
+  const auto r = RunCli("bench --suite landscape --pairs 3 --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/landscape.json"));
+  EXPECT_EQ(j["pairs_used"].get<int>(), 3);
+  for (const char* f : {"normalized radiance (PCF)", "ICP (point-to-plane)"}) {
+    const auto& s = j["summary"][f];
+    EXPECT_EQ(s["min_at_truth_translation"].get<int>(), 3) << f;
+    EXPECT_EQ(s["min_at_truth_rotation"].get<int>(), 3) << f;
+    EXPECT_GT(s["contrast_translation"].get<double>(), 1.2) << f;
+    EXPECT_GT(s["contrast_rotation"].get<double>(), 1.2) << f;
+  }
+  for (const auto& p : j["pairs"]) EXPECT_GE(std::abs(std::log2(p["exposure_ratio"].get<double>())), 1.0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/landscape_translation.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/landscape_rotation.png"));
 }
 
 }  // namespace
