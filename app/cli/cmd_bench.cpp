@@ -28,9 +28,9 @@ Command AddBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
                   "sim (the synthetic sensor), engine (per-stage times) or landscape (error functions "
-                  "around the true pose, the paper's figure)")
-      ->check(CLI::IsMember({"sim", "engine", "landscape"}))->capture_default_str();
-  cmd->add_option("--out", a->out, "landscape: output folder")->capture_default_str();
+                  "around the true pose, the paper's figure) or nr-figure (NR across an exposure change)")
+      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure"}))->capture_default_str();
+  cmd->add_option("--out", a->out, "landscape, nr-figure: output folder")->capture_default_str();
   cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
       ->capture_default_str();
   cmd->add_option("--frames", a->frames, "Frames per measurement")->check(CLI::Range(5, 100000))
@@ -39,6 +39,7 @@ Command AddBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
   return {cmd, [a] {
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
+    if (a->suite == "nr-figure") return RunNrFigure(a->out);
     if (a->suite == "engine") {
       pipeline::EngineBenchOptions o;
       o.frames = a->frames;

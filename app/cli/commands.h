@@ -25,5 +25,7 @@ Command AddEvalCommand(CLI::App& app);
 
 // The error-landscape figure (cmd_landscape.cpp), run by `bench --suite landscape`.
 int RunLandscape(const std::string& out_dir, int pairs, int steps);
+// The normalized-radiance figure (cmd_nr_figure.cpp), run by `bench --suite nr-figure`.
+int RunNrFigure(const std::string& out_dir);
 
 }  // namespace hdrf::cli

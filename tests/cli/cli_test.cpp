@@ -215,3 +215,32 @@ TEST(Cli, ErrorLandscapeHasItsMinimumAtTheTruthForNormalizedRadianceAndIcp) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// The normalized-radiance figure: the pair with the largest exposure change, ten panels
+// (two frames x colour, local mean, local std, NR, confidence), none of them blank.
+TEST(Cli, NormalizedRadianceFigureShowsEveryMapForAStrongExposureChange) {
+  test::TempDir tmp;
+  const std::string dir = (tmp / "nr").string();
+  const auto r = RunCli("bench --suite nr-figure --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/nr_figure.json"));
+  EXPECT_GE(std::abs(std::log2(j["exposure_ratio"].get<double>())), 2.0);
+  EXPECT_GT(j["pixels"].get<long>(), 1000);
+  EXPECT_GT(j["radiance_mean_abs_log2_ratio"].get<double>(), 2.0);
+  const cv::Mat sheet = cv::imread(dir + "/nr_figure.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(sheet.empty());
+  ASSERT_EQ(sheet.cols % 5, 0);
+  const int w = sheet.cols / 5, h = sheet.rows / 2;
+  for (int row = 0; row < 2; ++row)
+    for (int col = 0; col < 5; ++col) {
+      cv::Scalar mean, stddev;
+      cv::meanStdDev(sheet(cv::Rect(col * w, row * h, w, h)), mean, stddev);
+      EXPECT_GT(stddev[0], 10.0) << "panel " << col << " of frame " << row << " is blank";
+    }
+}
+
+}  // namespace
+}  // namespace hdrf
