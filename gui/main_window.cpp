@@ -416,9 +416,9 @@ void MainWindow::Render() {
   }
   if (visible("depth")) {
     float hi = 0.5f;
-    for (std::size_t i = 0; i < s->depth.size(); ++i) hi = std::max(hi, s->depth[i]);
+    for (std::size_t i = 0; i < s->images.depth.size(); ++i) hi = std::max(hi, s->images.depth[i]);
     hi = std::min(hi, 8.f);
-    const ColorImage cd = tonemap::ColorizeDepth(s->depth, 0.f, hi);
+    const ColorImage cd = tonemap::ColorizeDepth(s->images.depth, 0.f, hi);
     QVector<QRgb> bar;
     DepthImage ramp(1, 64);
     for (int i = 0; i < 64; ++i) ramp(0, i) = std::max(1e-3f, hi * float(i) / 63.f);
@@ -426,7 +426,7 @@ void MainWindow::Render() {
     for (int i = 0; i < 64; ++i) bar.push_back(qRgb(rc(0, i).r, rc(0, i).g, rc(0, i).b));
     views_["depth"]->SetScaleBar(bar, 0, hi, "m");
     views_["depth"]->SetImage(FromColor(cd), [s](int x, int y) {
-      const float z = s->depth(x, y);
+      const float z = s->images.depth(x, y);
       return z > 0 ? QStringLiteral("depth %1 m").arg(z, 0, 'f', 3) : QStringLiteral("no depth");
     });
   }

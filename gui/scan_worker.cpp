@@ -127,7 +127,6 @@ void ScanWorker::Step() {
     }
     s->color = std::move(f.color);
     s->images = pipe_->backend().Download();
-    s->depth = s->images.depth.Clone();
     s->camera = source_->sensor().camera;
     s->trajectory = trajectory_;
     s->exposure_estimated = exp_est_;

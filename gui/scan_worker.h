@@ -31,8 +31,7 @@ struct ScanSettings {
 struct Snapshot {
   pipeline::FrameReport report;
   ColorImage color;
-  DepthImage depth;                  // filtered, metres
-  pipeline::FrameImages images;      // radiance, confidence, NR, ray cast of the model
+  pipeline::FrameImages images;      // radiance, confidence, filtered depth, NR, ray cast
   PinholeCamera camera;
   std::vector<Pose> trajectory;      // every pose so far
   std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)

@@ -84,8 +84,7 @@ int RunLandscape(const std::string& out_dir, int pairs, int steps) {
   pipeline::SyntheticFrameSource src(so);
   const SensorInfo s = src.sensor();
   const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
-  std::vector<pipeline::FrameInput> frames(static_cast<std::size_t>(src.size()));
-  for (auto& f : frames) src.Next(f);
+  const std::vector<pipeline::FrameInput> frames = pipeline::ReadAll(src);
   const Pose T0inv = frames[0].T_world_camera_true->inverse();
   const fs::path out = out_dir;
   fs::create_directories(out);

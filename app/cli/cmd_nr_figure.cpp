@@ -52,8 +52,7 @@ int RunNrFigure(const std::string& out_dir) {
   pipeline::SyntheticFrameSource src(so);
   const SensorInfo s = src.sensor();
   const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
-  std::vector<pipeline::FrameInput> frames(static_cast<std::size_t>(src.size()));
-  for (auto& f : frames) src.Next(f);
+  const std::vector<pipeline::FrameInput> frames = pipeline::ReadAll(src);
   // The consecutive pair with the largest exposure change.
   std::size_t k = 1;
   for (std::size_t i = 1; i < frames.size(); ++i)

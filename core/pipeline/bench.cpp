@@ -20,8 +20,7 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
     so.frames = o.frames + kWarmup;
     so.ae.mode = sim::AeMode::kFlicker;
     SyntheticFrameSource src(so);
-    std::vector<FrameInput> frames(static_cast<std::size_t>(src.size()));
-    for (auto& f : frames) src.Next(f);  // rendered first, not timed
+    const std::vector<FrameInput> frames = ReadAll(src);  // rendered first, not timed
     const Pose T0inv = frames[0].T_world_camera_true->inverse();
     for (Device dev : o.devices)
     for (volume::VoxelEncoding enc : o.encodings) {

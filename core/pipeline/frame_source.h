@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "pipeline/pipeline.h"
 #include "radiometry/sensor.h"
@@ -46,5 +47,14 @@ class SyntheticFrameSource : public FrameSource {
   sim::SyntheticSource src_;
   SensorInfo sensor_;
 };
+
+// Every frame of a bounded source, read up front (benchmarks and figures time or compare
+// the engine, not the source).
+inline std::vector<FrameInput> ReadAll(FrameSource& src) {
+  std::vector<FrameInput> frames;
+  FrameInput f;
+  while ((src.size() < 0 || int(frames.size()) < src.size()) && src.Next(f)) frames.push_back(std::move(f));
+  return frames;
+}
 
 }  // namespace hdrf::pipeline

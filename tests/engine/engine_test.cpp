@@ -347,8 +347,7 @@ TEST(VoxelEncoding, CompactVoxelsKeepTheAccuracyOfFullOnes) {
   so.frames = 100;
   so.ae.mode = sim::AeMode::kFlicker;
   pipeline::SyntheticFrameSource src(so);
-  std::vector<pipeline::FrameInput> frames(static_cast<std::size_t>(src.size()));
-  for (auto& f : frames) src.Next(f);
+  const std::vector<pipeline::FrameInput> frames = pipeline::ReadAll(src);
   const sim::Scene scene = sim::Scene::Build(so.scene, so.seed);
   const SensorInfo& sensor = src.sensor();
   const radiometry::PcfTables pcf = radiometry::ComputePcf(*sensor.response, *sensor.noise);
