@@ -23,21 +23,39 @@ Command AddBenchCommand(CLI::App& app) {
     std::string device = "both";
     std::string out = "docs/results";
     int pairs = 10;
+    std::string size = "320x240", work = "build/bench-data";
+    std::vector<std::string> ae = {"flicker", "smooth"};
+    bool no_peers = false;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
                   "sim (the synthetic sensor), engine (per-stage times) or landscape (error functions "
                   "around the true pose, the paper's figure) or nr-figure (NR across an exposure change)")
-      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure"}))->capture_default_str();
+      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking"}))->capture_default_str();
   cmd->add_option("--out", a->out, "landscape, nr-figure: output folder")->capture_default_str();
   cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
       ->capture_default_str();
-  cmd->add_option("--frames", a->frames, "Frames per measurement")->check(CLI::Range(5, 100000))
+  auto* frames_opt = cmd->add_option("--frames", a->frames, "Frames per measurement (tracking: default 1000)")->check(CLI::Range(5, 100000))
       ->capture_default_str();
   cmd->add_option("--device", a->device, "Engine suite: cpu, cuda or both (CUDA rows where a GPU is usable)")
       ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
-  return {cmd, [a] {
+  cmd->add_option("--size", a->size, "tracking: image size")->capture_default_str();
+  cmd->add_option("--ae", a->ae, "tracking: auto-exposure modes")->delimiter(',')
+      ->check(CLI::IsMember({"flicker", "smooth", "fixed"}))->capture_default_str();
+  cmd->add_option("--work", a->work, "tracking: folder for the sequences the peers read")->capture_default_str();
+  cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
+  return {cmd, [a, frames_opt] {
+    if (a->suite == "tracking") {
+      TrackingExperimentArgs t;
+      if (frames_opt->count() > 0) t.frames = a->frames;
+      t.size = a->size;
+      t.ae_modes = a->ae;
+      t.out = a->out;
+      t.work = a->work;
+      t.peers = !a->no_peers;
+      return RunTrackingExperiment(t);
+    }
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
     if (a->suite == "nr-figure") return RunNrFigure(a->out);
     if (a->suite == "engine") {

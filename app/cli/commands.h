@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace hdrf::cli {
 
@@ -25,6 +27,16 @@ Command AddEvalCommand(CLI::App& app);
 
 // The error-landscape figure (cmd_landscape.cpp), run by `bench --suite landscape`.
 int RunLandscape(const std::string& out_dir, int pairs, int steps);
+// The tracking experiment (cmd_tracking.cpp), run by `bench --suite tracking`.
+struct TrackingExperimentArgs {
+  int frames = 1000;
+  std::string size = "320x240";
+  std::vector<std::string> ae_modes = {"flicker", "smooth"};
+  std::string out = "docs/results";
+  std::string work = "build/bench-data";  // sequences written for the peers
+  bool peers = true;
+};
+int RunTrackingExperiment(const TrackingExperimentArgs& a);
 // The normalized-radiance figure (cmd_nr_figure.cpp), run by `bench --suite nr-figure`.
 int RunNrFigure(const std::string& out_dir);
 

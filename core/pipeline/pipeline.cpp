@@ -187,15 +187,7 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
                 "with hdrfusion calibrate, or pass --response srgb to assume an sRGB camera");
   inverse_ = *sensor.response;
   inverse_.Check("sensor response");
-  radiometry::NoiseModel noise;
-  if (sensor.noise) {
-    noise = *sensor.noise;
-  } else {  // PCF from the response alone: a mild noise floor, documented in docs/engine.md
-    noise.sigma_s = {0.02f, 0.02f, 0.02f};
-    noise.sigma_c = {0.002f * inverse_.table[0][128], 0.002f * inverse_.table[1][128],
-                     0.002f * inverse_.table[2][128]};
-  }
-  pcf_ = radiometry::ComputePcf(inverse_, noise);
+  pcf_ = radiometry::ComputePcf(inverse_, sensor.noise ? *sensor.noise : radiometry::DefaultNoise(inverse_));
   const auto inverse = inverse_.Flat();
   std::vector<float> p(768);
   for (int c = 0; c < 3; ++c)

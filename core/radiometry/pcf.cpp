@@ -49,4 +49,11 @@ PcfTables ComputePcf(const InverseResponse& inverse, const NoiseModel& noise) {
   return out;
 }
 
+NoiseModel DefaultNoise(const InverseResponse& inverse) {
+  NoiseModel noise;
+  noise.sigma_s = {0.02f, 0.02f, 0.02f};
+  for (int c = 0; c < 3; ++c) noise.sigma_c[std::size_t(c)] = 0.002f * inverse.table[std::size_t(c)][128];
+  return noise;
+}
+
 }  // namespace hdrf::radiometry

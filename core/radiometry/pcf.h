@@ -25,4 +25,8 @@ struct PcfTables {
 
 PcfTables ComputePcf(const InverseResponse& inverse, const NoiseModel& noise);
 
+// The noise model used when a sensor has none calibrated: a mild floor from the response
+// alone (sigma_s = 0.02, sigma_c = 0.2 % of mid-grey radiance), documented in docs/engine.md.
+NoiseModel DefaultNoise(const InverseResponse& inverse);
+
 }  // namespace hdrf::radiometry

@@ -1,0 +1,198 @@
+#include "eval/baseline_trackers.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <optional>
+
+#include "common/error.h"
+#include "imaging/imaging.h"
+#include "radiometry/pcf.h"
+
+namespace hdrf::eval {
+
+const char* BaselineName(BaselineKind k) {
+  return k == BaselineKind::kNcc ? "ncc" : "joint-exposure";
+}
+
+namespace {
+
+using Mat7 = Eigen::Matrix<double, 7, 7>;
+using Vec7 = Eigen::Matrix<double, 7, 1>;
+
+// The previous frame as a reference: world-frame vertices and normals, its image.
+tracking::Reference ReferenceOf(const tracking::Live& live, const Pose& T, const PinholeCamera& cam, int levels) {
+  const auto& L = live.levels[0];
+  const RigidTransform R = ToRigidTransform(T);
+  Image<Float3> vw(cam.width, cam.height), nw(cam.width, cam.height);
+  for (std::size_t i = 0; i < vw.size(); ++i)
+    if (L.vertex_c[i].z > 0) {
+      vw[i] = R.Apply(L.vertex_c[i]);
+      nw[i] = R.Rotate(L.normal_c[i]);
+    }
+  return tracking::MakeReference(vw, nw, L.intensity, cam, levels, T);
+}
+
+// Sums the 7-parameter normal equations of r = I_ref(x) - a I_live(w(x)) at one level.
+struct JointSums {
+  Mat7 H = Mat7::Zero();
+  Vec7 g = Vec7::Zero();
+  long n = 0;
+};
+JointSums AccumulateJoint(const tracking::ReferenceView& ref, const tracking::LiveView& live, const Pose& T_world_live,
+                          double gain, const BaselineOptions& o) {
+  const RigidTransform T_live_world = ToRigidTransform(T_world_live.inverse());
+  JointSums total;
+#pragma omp parallel
+  {
+    JointSums local;
+#pragma omp for schedule(static) nowait
+    for (int y = 0; y < ref.cam.height; ++y)
+      for (int x = 0; x < ref.cam.width; ++x) {
+        const Float3 m = ref.vertex_w(x, y);
+        const float i_ref = ref.intensity(x, y);
+        if ((m.x == 0.f && m.y == 0.f && m.z == 0.f) || i_ref <= 0.f) continue;
+        const Float3 q = T_live_world.Apply(m);
+        if (q.z <= 0.1f) continue;
+        const PinholeCamera& c = live.cam;
+        const Float2 u = c.Project(q);
+        float il, wl, gx = 0.f, gy = 0.f;
+        if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il)) continue;
+        if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0.f) continue;
+        imaging::SampleBilinear(live.grad_x, u.x, u.y, &gx);
+        imaging::SampleBilinear(live.grad_y, u.x, u.y, &gy);
+        // Same geometry as tracking::PhotoTerm; the live image is scaled by the gain.
+        const double iz = 1.0 / double(q.z);
+        const double gu = gain * double(gx * c.fx) * iz, gv = gain * double(gy * c.fy) * iz;
+        const double qx = q.x, qy = q.y, qz = q.z;
+        const double dz = -(gu * qx + gv * qy) * iz;
+        const double s = double(wl) / double(o.gain_sigma);
+        Vec7 J;
+        J << gu, gv, dz, qy * dz - qz * gv, qz * gu - qx * dz, qx * gv - qy * gu, -gain * double(il);
+        J *= s;
+        const double r = (double(i_ref) - gain * double(il)) * s;
+        const double a = std::abs(r);
+        const double w = a <= o.huber_k ? 1.0 : o.huber_k / a;
+        local.H.selfadjointView<Eigen::Upper>().rankUpdate(J, w);
+        local.g += w * r * J;
+        ++local.n;
+      }
+#pragma omp critical
+    {
+      total.H += local.H;
+      total.g += local.g;
+      total.n += local.n;
+    }
+  }
+  total.H = total.H.selfadjointView<Eigen::Upper>();
+  return total;
+}
+
+}  // namespace
+
+struct BaselineTracker::State {
+  BaselineKind kind;
+  PinholeCamera cam;
+  SensorInfo sensor;
+  BaselineOptions o;
+  std::optional<radiometry::PcfTables> pcf;
+  std::optional<tracking::Reference> ref;
+  Pose pose = Pose::Identity(), previous = Pose::Identity();
+  float scale = 1, previous_scale = 1;  // joint exposure: the mean normalization of the frames
+};
+
+BaselineTracker::BaselineTracker(BaselineKind kind, const PinholeCamera& camera, const SensorInfo& sensor,
+                                 const BaselineOptions& o)
+    : s_(std::make_unique<State>()) {
+  s_->kind = kind;
+  s_->cam = camera;
+  s_->sensor = sensor;
+  s_->o = o;
+  if (kind == BaselineKind::kJointExposure) {
+    if (!sensor.response)
+      throw Error("the joint-exposure tracker needs the sensor's response calibration (sensor.json 'response')");
+    s_->pcf = radiometry::ComputePcf(*sensor.response,
+                                     sensor.noise ? *sensor.noise : radiometry::DefaultNoise(*sensor.response));
+  }
+}
+
+BaselineTracker::~BaselineTracker() = default;
+
+BaselineStep BaselineTracker::Process(const ColorImage& color, const DepthImage& depth_m) {
+  State& s = *s_;
+  const int w = color.width(), h = color.height();
+  if (w != s.cam.width || h != s.cam.height || depth_m.width() != w || depth_m.height() != h)
+    throw Error("baseline tracker: frame size differs from the camera");
+  const DepthImage depth = imaging::BilateralDepth(depth_m);
+  Image<float> image, weight;
+  if (s.kind == BaselineKind::kNcc) {
+    Image<float> raw(w, h);
+    for (std::size_t i = 0; i < raw.size(); ++i) raw[i] = imaging::RawIntensityPixel(color[i]);
+    image = imaging::NormalizedRadiance(raw, {s.o.ncc_patch, 1, s.o.ncc_min_std});
+    weight = Image<float>(w, h, 1.f);
+  } else {
+    RadianceImage rad;
+    Image<float> maxconf;
+    imaging::ConvertFrame(color, *s.sensor.response, *s.pcf, s.o.pcf, rad, weight, maxconf);
+    image = imaging::Luminance(rad);
+    // Scale to a mean of 1 over trusted pixels so the residual scale means the same in
+    // every frame; the gain absorbs the rest. Untrusted pixels carry no reference value.
+    double sum = 0;
+    long n = 0;
+    for (std::size_t i = 0; i < image.size(); ++i)
+      if (weight[i] > 0) sum += image[i], ++n;
+    const float k = n > 0 && sum > 0 ? float(double(n) / sum) : 1.f;
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = weight[i] > 0 ? image[i] * k : 0.f;
+    s.previous_scale = s.scale;
+    s.scale = k;
+  }
+  const tracking::Live live = tracking::MakeLive(depth, image, weight, s.cam, s.o.levels);
+  BaselineStep step;
+  if (!s.ref) {
+    s.ref = ReferenceOf(live, s.pose, s.cam, s.o.levels);
+    step.T_world_camera = s.pose;
+    return step;
+  }
+  const Pose predicted = se3::Orthonormalized(s.pose * (s.previous.inverse() * s.pose));
+  Pose T = predicted;
+  const int levels = std::min(s.o.levels, int(live.levels.size()));
+  if (s.kind == BaselineKind::kNcc) {
+    tracking::TrackerOptions to;
+    to.kind = tracking::TrackerKind::kNr;  // the photometric term, on the NCC image
+    to.levels = levels;
+    to.iterations = s.o.iterations;
+    to.photo_sigma = s.o.ncc_sigma;
+    to.huber_k = s.o.huber_k;
+    const tracking::TrackResult r = tracking::Track(*s.ref, live, predicted, to);
+    step.iterations = r.iterations;
+    step.lost = r.iterations == 0;
+    T = r.T_world_camera;
+  } else {
+    double b = 0;  // log gain of this pair
+    for (int l = levels - 1; l >= 0; --l) {
+      const int iters = s.o.iterations[std::size_t(levels - 1 - l)];
+      for (int it = 0; it < iters; ++it) {
+        const JointSums js = AccumulateJoint(s.ref->levels[std::size_t(l)].view(), live.levels[std::size_t(l)].view(),
+                                             T, std::exp(b), s.o);
+        if (js.n < 12) break;
+        const Mat7 Hd = js.H + 1e-6 * Mat7::Identity() * js.H.trace() / 7.0;
+        const Vec7 d = Hd.ldlt().solve(-js.g);
+        if (!d.allFinite()) break;
+        T = se3::Orthonormalized(T * se3::Exp(Vec6(d.head<6>())));
+        b += d(6);
+        ++step.iterations;
+        if (d.head<3>().norm() < 1e-5 && d.segment<3>(3).norm() < 1e-5 && std::abs(d(6)) < 1e-5) break;
+      }
+    }
+    step.lost = step.iterations == 0;
+    // k_ref L_ref = a k_live L_live, so L_ref / L_live = a k_live / k_ref.
+    step.gain = std::exp(b) * double(s.scale) / double(s.previous_scale);
+  }
+  if (step.lost) T = predicted;
+  s.previous = s.pose;
+  s.pose = T;
+  s.ref = ReferenceOf(live, T, s.cam, s.o.levels);
+  step.T_world_camera = T;
+  return step;
+}
+
+}  // namespace hdrf::eval
