@@ -2,6 +2,8 @@
 # Installs the Debian 12 packages HDRFusion needs to build and test, only those missing.
 # Run as root (or with sudo available). The CUDA toolkit is optional and never installed
 # here: when nvcc is present the CUDA backend is built, otherwise the CPU backend only.
+# --peers also installs the peers of the tracking benchmark (OpenCV contrib rgbd, Open3D),
+# so that hdrfusion-peers is built and `hdrfusion bench --suite paper` runs them.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config
@@ -11,6 +13,12 @@ packages=(
   libopenexr-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
 )
+if [ "${1:-}" = "--peers" ]; then
+  packages+=(libopencv-contrib-dev libopen3d-dev)
+elif [ $# -gt 0 ]; then
+  echo "install_deps: unknown option '$1' (the only option is --peers)" >&2
+  exit 2
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

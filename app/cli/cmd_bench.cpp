@@ -30,9 +30,11 @@ Command AddBenchCommand(CLI::App& app) {
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
-                  "sim (the synthetic sensor), engine (per-stage times) or landscape (error functions "
-                  "around the true pose, the paper's figure) or nr-figure (NR across an exposure change)")
-      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking"}))->capture_default_str();
+                  "sim (the synthetic sensor), engine (per-stage times), landscape (error functions "
+                  "around the true pose, the paper's figure), nr-figure (NR across an exposure change), tracking "
+                  "(trackers and peers over 1000 frames), radiance (HDR accuracy, dynamic range), or paper "
+                  "(all of docs/results)")
+      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking", "radiance", "paper"}))->capture_default_str();
   cmd->add_option("--out", a->out, "landscape, nr-figure: output folder")->capture_default_str();
   cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
       ->capture_default_str();
@@ -46,7 +48,9 @@ Command AddBenchCommand(CLI::App& app) {
   cmd->add_option("--work", a->work, "tracking: folder for the sequences the peers read")->capture_default_str();
   cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
   return {cmd, [a, frames_opt] {
-    if (a->suite == "tracking") {
+    if (a->suite == "radiance")
+      return RunRadianceAccuracy(a->out, frames_opt->count() > 0 ? a->frames : 300, a->size);
+    if (a->suite == "tracking" || a->suite == "paper") {
       TrackingExperimentArgs t;
       if (frames_opt->count() > 0) t.frames = a->frames;
       t.size = a->size;
@@ -54,7 +58,7 @@ Command AddBenchCommand(CLI::App& app) {
       t.out = a->out;
       t.work = a->work;
       t.peers = !a->no_peers;
-      return RunTrackingExperiment(t);
+      return a->suite == "paper" ? RunPaper(t, a->pairs) : RunTrackingExperiment(t);
     }
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
     if (a->suite == "nr-figure") return RunNrFigure(a->out);

@@ -37,6 +37,10 @@ struct TrackingExperimentArgs {
   bool peers = true;
 };
 int RunTrackingExperiment(const TrackingExperimentArgs& a);
+// Everything above, then docs/results/README.md (cmd_paper.cpp), `bench --suite paper`.
+int RunPaper(const TrackingExperimentArgs& a, int pairs);
+// Radiance accuracy and dynamic range per scene (cmd_radiance_bench.cpp), `bench --suite radiance`.
+int RunRadianceAccuracy(const std::string& out_dir, int frames, const std::string& size);
 // The normalized-radiance figure (cmd_nr_figure.cpp), run by `bench --suite nr-figure`.
 int RunNrFigure(const std::string& out_dir);
 

@@ -6,7 +6,7 @@
 //   hdrfusion-peers SEQUENCE --out DIR [--only id,id] [--frames N]
 //
 // Writes DIR/<id>.txt (TUM trajectories, camera to world, world = first camera), the
-// Open3D TSDF mesh as DIR/open3d-tsdf.ply (our PLY layout; its "radiance" is the 8-bit
+// Open3D TSDF mesh of the first --tsdf-frames frames as DIR/open3d-tsdf.ply (our PLY layout; its "radiance" is the 8-bit
 // colour decoded from sRGB, not HDR), and DIR/peers.json: per peer its label, wall
 // seconds, frames and failed frames. Inputs are those of our engine: the colour as
 // delivered (grey for the trackers that take grey), depth in metres, the intrinsics.
@@ -161,7 +161,8 @@ std::shared_ptr<open3d::geometry::RGBDImage> ToOpen3d(const io::Frame& f, double
 
 // Open3D RGB-D odometry (hybrid photometric + geometric Jacobian), frame to frame, and
 // its scalable TSDF integration of the frames at those poses (colour as delivered).
-Result RunOpen3d(const io::SequenceReader& seq, std::size_t n, const fs::path& mesh_out, double* tsdf_seconds) {
+Result RunOpen3d(const io::SequenceReader& seq, std::size_t n, std::size_t tsdf_frames, const fs::path& mesh_out,
+                 double* tsdf_seconds) {
   Result r{"open3d", "Open3D RGB-D odometry (hybrid term, OdometryOption defaults)", {}, 0, 0};
   open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
   const SensorInfo& s = seq.sensor();
@@ -187,10 +188,12 @@ Result RunOpen3d(const io::SequenceReader& seq, std::size_t n, const fs::path& m
       velocity = step;
     }
     busy += Since(t0);
-    const auto t1 = Clock::now();
-    auto colour = ToOpen3d(f, s.depth_scale, false);
-    volume.Integrate(*colour, intr, Eigen::Matrix4d(pose.inverse().matrix()));
-    tsdf += Since(t1);
+    if (i < tsdf_frames) {
+      const auto t1 = Clock::now();
+      auto colour = ToOpen3d(f, s.depth_scale, false);
+      volume.Integrate(*colour, intr, Eigen::Matrix4d(pose.inverse().matrix()));
+      tsdf += Since(t1);
+    }
     r.poses.push_back(pose);
     prev = cur;
     Progress(r.id, i, n);
@@ -219,12 +222,15 @@ Result RunOpen3d(const io::SequenceReader& seq, std::size_t n, const fs::path& m
 int main(int argc, char** argv) {
   CLI::App app{"Runs OpenCV rgbd and Open3D trackers on a sequence, for hdrfusion bench --suite tracking"};
   std::string seq_dir, out, only;
-  int frames = 0;
+  int frames = 0, tsdf_frames = 100;
   app.add_option("SEQUENCE", seq_dir, "Sequence folder (FORMATS.md)")->required();
   app.add_option("--out", out, "Output folder")->required();
   app.add_option("--only", only, "Comma-separated peers: opencv-rgbd, opencv-icp, opencv-rgbd-icp, "
                                  "opencv-kinfu, open3d (default: all)");
   app.add_option("--frames", frames, "At most this many frames (default: all)");
+  app.add_option("--tsdf-frames", tsdf_frames,
+                 "Open3D: integrate the first N frames into its TSDF volume at its own poses (a drifting "
+                 "trajectory grows the volume without bound, so not all)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     const io::SequenceReader seq(seq_dir);
@@ -262,14 +268,17 @@ int main(int argc, char** argv) {
                         {"unavailable", e.err}});
       }
     }
-    if (wanted("open3d")) results.push_back(RunOpen3d(seq, n, fs::path(out) / "open3d-tsdf.ply", &tsdf_seconds));
+    if (wanted("open3d")) results.push_back(RunOpen3d(seq, n, std::size_t(std::max(0, tsdf_frames)), fs::path(out) / "open3d-tsdf.ply", &tsdf_seconds));
     for (const Result& r : results) {
       std::vector<io::TimedPose> tp;
       for (std::size_t i = 0; i < r.poses.size(); ++i) tp.push_back({seq.frames()[i].timestamp, r.poses[i]});
       io::WriteTrajectory(fs::path(out) / (r.id + ".txt"), tp);
       json j{{"id", r.id}, {"label", r.label}, {"seconds", r.seconds}, {"frames", r.poses.size()},
              {"failed", r.failed}};
-      if (r.id == "open3d") j["tsdf_seconds"] = tsdf_seconds;
+      if (r.id == "open3d") {
+        j["tsdf_seconds"] = tsdf_seconds;
+        j["tsdf_frames"] = std::min<std::size_t>(n, std::size_t(std::max(0, tsdf_frames)));
+      }
       meta.push_back(j);
     }
     std::ofstream js(fs::path(out) / "peers.json");

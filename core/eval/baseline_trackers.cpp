@@ -1,7 +1,9 @@
 #include "eval/baseline_trackers.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <optional>
 
 #include "common/error.h"
@@ -32,6 +34,45 @@ tracking::Reference ReferenceOf(const tracking::Live& live, const Pose& T, const
   return tracking::MakeReference(vw, nw, L.intensity, cam, levels, T);
 }
 
+// Radiance pyramids that leave untrusted pixels (0) out: each coarser pixel is the mean of
+// its trusted children (0 if none), and gradients are taken only between trusted pixels, so
+// saturated or black regions do not bleed into the residuals at coarse levels.
+void MaskedPyramid(tracking::Live& live) {
+  for (std::size_t l = 0; l < live.levels.size(); ++l) {
+    auto& L = live.levels[l];
+    if (l > 0) {
+      const auto& F = live.levels[l - 1].intensity;
+      for (int y = 0; y < L.intensity.height(); ++y)
+        for (int x = 0; x < L.intensity.width(); ++x) {
+          float sum = 0.f;
+          int n = 0;
+          for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+              const float v = F(2 * x + dx, 2 * y + dy);
+              if (v > 0.f) sum += v, ++n;
+            }
+          L.intensity(x, y) = n > 0 ? sum / float(n) : 0.f;
+          if (n == 0) L.weight(x, y) = 0.f;
+        }
+    }
+    const auto& I = L.intensity;
+    for (int y = 0; y < I.height(); ++y)
+      for (int x = 0; x < I.width(); ++x) {
+        const bool okx = x > 0 && x + 1 < I.width() && I(x - 1, y) > 0.f && I(x + 1, y) > 0.f;
+        const bool oky = y > 0 && y + 1 < I.height() && I(x, y - 1) > 0.f && I(x, y + 1) > 0.f;
+        L.grad_x(x, y) = okx ? 0.5f * (I(x + 1, y) - I(x - 1, y)) : 0.f;
+        L.grad_y(x, y) = oky ? 0.5f * (I(x, y + 1) - I(x, y - 1)) : 0.f;
+        if (!(okx && oky)) L.weight(x, y) = 0.f;
+      }
+  }
+}
+
+// True when the four pixels around (u, v) are trusted.
+bool Trusted(ImageView<const float> img, float u, float v) {
+  const int ix = int(u), iy = int(v);
+  return img(ix, iy) > 0.f && img(ix + 1, iy) > 0.f && img(ix, iy + 1) > 0.f && img(ix + 1, iy + 1) > 0.f;
+}
+
 // Sums the 7-parameter normal equations of r = I_ref(x) - a I_live(w(x)) at one level.
 struct JointSums {
   Mat7 H = Mat7::Zero();
@@ -56,7 +97,7 @@ JointSums AccumulateJoint(const tracking::ReferenceView& ref, const tracking::Li
         const PinholeCamera& c = live.cam;
         const Float2 u = c.Project(q);
         float il, wl, gx = 0.f, gy = 0.f;
-        if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il)) continue;
+        if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il) || !Trusted(live.intensity, u.x, u.y)) continue;
         if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0.f) continue;
         imaging::SampleBilinear(live.grad_x, u.x, u.y, &gx);
         imaging::SampleBilinear(live.grad_y, u.x, u.y, &gy);
@@ -85,6 +126,28 @@ JointSums AccumulateJoint(const tracking::ReferenceView& ref, const tracking::Li
   }
   total.H = total.H.selfadjointView<Eigen::Upper>();
   return total;
+}
+
+// Starting gain: the median over matched pixels of I_ref / I_live at a pose (1 if too few).
+double MedianRatio(const tracking::ReferenceView& ref, const tracking::LiveView& live, const Pose& T_world_live) {
+  const RigidTransform T_live_world = ToRigidTransform(T_world_live.inverse());
+  std::vector<double> r;
+  for (int y = 0; y < ref.cam.height; ++y)
+    for (int x = 0; x < ref.cam.width; ++x) {
+      const Float3 m = ref.vertex_w(x, y);
+      const float i_ref = ref.intensity(x, y);
+      if ((m.x == 0.f && m.y == 0.f && m.z == 0.f) || i_ref <= 0.f) continue;
+      const Float3 q = T_live_world.Apply(m);
+      if (q.z <= 0.1f) continue;
+      const Float2 u = live.cam.Project(q);
+      float il, wl;
+      if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il) || il <= 0.f) continue;
+      if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0.f) continue;
+      r.push_back(double(i_ref) / double(il));
+    }
+  if (r.size() < 50) return 1;
+  std::nth_element(r.begin(), r.begin() + long(r.size() / 2), r.end());
+  return r[r.size() / 2];
 }
 
 }  // namespace
@@ -145,7 +208,8 @@ BaselineStep BaselineTracker::Process(const ColorImage& color, const DepthImage&
     s.previous_scale = s.scale;
     s.scale = k;
   }
-  const tracking::Live live = tracking::MakeLive(depth, image, weight, s.cam, s.o.levels);
+  tracking::Live live = tracking::MakeLive(depth, image, weight, s.cam, s.o.levels);
+  if (s.kind == BaselineKind::kJointExposure) MaskedPyramid(live);
   BaselineStep step;
   if (!s.ref) {
     s.ref = ReferenceOf(live, s.pose, s.cam, s.o.levels);
@@ -167,7 +231,9 @@ BaselineStep BaselineTracker::Process(const ColorImage& color, const DepthImage&
     step.lost = r.iterations == 0;
     T = r.T_world_camera;
   } else {
-    double b = 0;  // log gain of this pair
+    // Log gain of this pair, started from the median ratio at the prediction (coarsest level).
+    double b = std::log(MedianRatio(s.ref->levels[std::size_t(levels - 1)].view(),
+                                    live.levels[std::size_t(levels - 1)].view(), predicted));
     for (int l = levels - 1; l >= 0; --l) {
       const int iters = s.o.iterations[std::size_t(levels - 1 - l)];
       for (int it = 0; it < iters; ++it) {

@@ -61,6 +61,17 @@ double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
   return v[v.size() / 2];
 }
+}  // namespace
+
+double RangeStops(std::vector<double> v, double lo, double hi) {
+  if (v.size() < 2) return 0;
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) { return v[std::size_t(std::lround(q * double(v.size() - 1)))]; };
+  const double a = at(lo), b = at(hi);
+  return a > 0 && b > 0 ? std::log2(b / a) : 0;
+}
+
+namespace {
 float Channel(const Float3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
 }  // namespace
 
@@ -91,6 +102,16 @@ ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose
     }
     e.scale[c] = std::exp(Median(r));
   }
+  std::vector<double> lum_est, lum_true;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    const Float3 a{float(est[i].x * e.scale[0]), float(est[i].y * e.scale[1]), float(est[i].z * e.scale[2])};
+    if (Luminance(a) > 0 && Luminance(truth[i]) > 0) {
+      lum_est.push_back(Luminance(a));
+      lum_true.push_back(Luminance(truth[i]));
+    }
+  }
+  e.model_range_stops = RangeStops(lum_est);
+  e.true_range_stops = RangeStops(lum_true);
   std::vector<double> stops;
   for (std::size_t i = 0; i < est.size(); ++i)
     for (int c = 0; c < 3; ++c) {

@@ -27,8 +27,14 @@ struct ModelError {
   std::size_t vertices = 0, radiance_samples = 0;
   double mesh_median_distance_m = 0;
   double radiance_median_stops = 0, within_01_stop = 0, within_025_stop = 0;
+  // Dynamic range, log2 of the 99th over the 1st percentile of luminance over the same
+  // vertices: of the fused radiance (after the scales) and of the true radiance there.
+  double model_range_stops = 0, true_range_stops = 0;
   double scale[3] = {1, 1, 1};
 };
+// log2 of the `hi` over the `lo` quantile of positive values (0 when fewer than 2).
+double RangeStops(std::vector<double> values, double lo = 0.01, double hi = 0.99);
+
 // T_scene_model maps model (first camera) coordinates into the scene; at most
 // `max_samples` vertices are used (evenly spaced).
 ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose& T_scene_model,

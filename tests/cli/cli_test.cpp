@@ -244,3 +244,73 @@ TEST(Cli, NormalizedRadianceFigureShowsEveryMapForAStrongExposureChange) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+double Ate(const nlohmann::json& rows, const std::string& id) {
+  for (const auto& r : rows)
+    if (r["id"] == id) return r.contains("ate_rmse_m") ? r["ate_rmse_m"].get<double>() : -1;
+  return -2;
+}
+
+// The tracking experiment on a short flicker sequence: every tracker gives a trajectory
+// with per-frame errors; HDRFusion's default is accurate and raw intensity is not; the peers
+// run on the same folder where hdrfusion-peers was built.
+TEST(Cli, TrackingExperimentComparesEveryTrackerOnTheSameFrames) {
+  test::TempDir tmp;
+  const std::string out = (tmp / "results").string(), work = (tmp / "work").string();
+  const auto r = RunCli("bench --suite tracking --frames 40 --ae flicker --out " + out + " --work " + work);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/tracking.json"));
+  const auto& rows = j["flicker"]["trackers"];
+  EXPECT_EQ(j["flicker"]["frames"].get<int>(), 40);
+  for (const char* id : {"intensity", "ncc", "joint-exposure", "nr-f2f", "nr-f2m", "icp", "nr+icp"}) {
+    EXPECT_GE(Ate(rows, id), 0) << id;
+    for (const auto& row : rows)
+      if (row["id"] == id) {
+        EXPECT_EQ(row["trans_error_m"].size(), 40u) << id;
+        EXPECT_GT(row["seconds"].get<double>(), 0) << id;
+      }
+  }
+  EXPECT_LT(Ate(rows, "nr+icp"), 0.02);
+  EXPECT_LT(Ate(rows, "nr-f2m"), 0.04);
+  EXPECT_GT(Ate(rows, "intensity"), 2 * Ate(rows, "nr+icp"));
+  EXPECT_TRUE(fs::exists(out + "/tracking_flicker_translation.png"));
+  EXPECT_TRUE(fs::exists(out + "/tracking_flicker_rotation.png"));
+  EXPECT_TRUE(fs::exists(work + "/room-flicker/rgb.txt"));
+  const bool peers = fs::exists(fs::path(HDRF_CLI).parent_path() / "hdrfusion-peers");
+  if (peers) {
+    for (const char* id : {"opencv-rgbd", "opencv-icp", "opencv-rgbd-icp", "open3d"}) EXPECT_GE(Ate(rows, id), 0) << id;
+    EXPECT_NE(Ate(rows, "opencv-kinfu"), -2);  // run, or reported unavailable with the reason
+    EXPECT_TRUE(fs::exists(work + "/peers-flicker/open3d-tsdf.ply"));
+    const auto bad = test::RunCommand((fs::path(HDRF_CLI).parent_path() / "hdrfusion-peers").string() + " " +
+                                      (tmp / "missing").string() + " --out " + (tmp / "p").string());
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.output.find("missing"), std::string::npos) << bad.output;
+  } else {
+    EXPECT_NE(r.output.find("peers not run"), std::string::npos) << r.output;
+  }
+}
+
+// Radiance accuracy: the fused radiance of every scene is close to the truth, and the model's
+// dynamic range is measured beside the scene's and the frames'.
+TEST(Cli, RadianceSuiteMeasuresAccuracyAndDynamicRangePerScene) {
+  test::TempDir tmp;
+  const std::string out = (tmp / "results").string();
+  const auto r = RunCli("bench --suite radiance --frames 15 --out " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/radiance.json"));
+  ASSERT_EQ(j.size(), 4u);
+  for (const auto& row : j) {
+    const std::string what = row["scene"].get<std::string>() + "/" + row["ae"].get<std::string>();
+    EXPECT_LT(row["radiance_median_stops"].get<double>(), 0.1) << what;
+    EXPECT_GT(row["within_025_stop"].get<double>(), 0.7) << what;
+    EXPECT_GT(row["model_range_stops"].get<double>(), 3.0) << what;
+    EXPECT_GT(row["true_range_stops"].get<double>(), 3.0) << what;
+    EXPECT_GT(row["frame_range_stops_max"].get<double>(), 1.0) << what;
+  }
+}
+
+}  // namespace
+}  // namespace hdrf
