@@ -73,6 +73,26 @@ bool Trusted(ImageView<const float> img, float u, float v) {
   return img(ix, iy) > 0.f && img(ix + 1, iy) > 0.f && img(ix, iy + 1) > 0.f && img(ix + 1, iy + 1) > 0.f;
 }
 
+// The live sample matched to reference pixel (x, y) at a pose: false where the reference has
+// no vertex or value, or the warped point falls outside the live image or on untrusted pixels.
+struct Match {
+  float i_ref, il, wl;
+  Float3 q;  // the reference point in the live camera frame
+  Float2 u;  // its live pixel
+};
+bool MatchPixel(const tracking::ReferenceView& ref, const tracking::LiveView& live, const RigidTransform& T_live_world,
+                int x, int y, Match* m) {
+  const Float3 p = ref.vertex_w(x, y);
+  m->i_ref = ref.intensity(x, y);
+  if ((p.x == 0.f && p.y == 0.f && p.z == 0.f) || m->i_ref <= 0.f) return false;
+  m->q = T_live_world.Apply(p);
+  if (m->q.z <= 0.1f) return false;
+  m->u = live.cam.Project(m->q);
+  if (!imaging::SampleBilinear(live.intensity, m->u.x, m->u.y, &m->il) || !Trusted(live.intensity, m->u.x, m->u.y))
+    return false;
+  return imaging::SampleBilinear(live.weight, m->u.x, m->u.y, &m->wl) && m->wl > 0.f;
+}
+
 // Sums the 7-parameter normal equations of r = I_ref(x) - a I_live(w(x)) at one level.
 struct JointSums {
   Mat7 H = Mat7::Zero();
@@ -89,16 +109,13 @@ JointSums AccumulateJoint(const tracking::ReferenceView& ref, const tracking::Li
 #pragma omp for schedule(static) nowait
     for (int y = 0; y < ref.cam.height; ++y)
       for (int x = 0; x < ref.cam.width; ++x) {
-        const Float3 m = ref.vertex_w(x, y);
-        const float i_ref = ref.intensity(x, y);
-        if ((m.x == 0.f && m.y == 0.f && m.z == 0.f) || i_ref <= 0.f) continue;
-        const Float3 q = T_live_world.Apply(m);
-        if (q.z <= 0.1f) continue;
+        Match mt;
+        if (!MatchPixel(ref, live, T_live_world, x, y, &mt)) continue;
         const PinholeCamera& c = live.cam;
-        const Float2 u = c.Project(q);
-        float il, wl, gx = 0.f, gy = 0.f;
-        if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il) || !Trusted(live.intensity, u.x, u.y)) continue;
-        if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0.f) continue;
+        const Float3 q = mt.q;
+        const Float2 u = mt.u;
+        const float i_ref = mt.i_ref, il = mt.il, wl = mt.wl;
+        float gx = 0.f, gy = 0.f;
         imaging::SampleBilinear(live.grad_x, u.x, u.y, &gx);
         imaging::SampleBilinear(live.grad_y, u.x, u.y, &gy);
         // Same geometry as tracking::PhotoTerm; the live image is scaled by the gain.
@@ -134,16 +151,8 @@ double MedianRatio(const tracking::ReferenceView& ref, const tracking::LiveView&
   std::vector<double> r;
   for (int y = 0; y < ref.cam.height; ++y)
     for (int x = 0; x < ref.cam.width; ++x) {
-      const Float3 m = ref.vertex_w(x, y);
-      const float i_ref = ref.intensity(x, y);
-      if ((m.x == 0.f && m.y == 0.f && m.z == 0.f) || i_ref <= 0.f) continue;
-      const Float3 q = T_live_world.Apply(m);
-      if (q.z <= 0.1f) continue;
-      const Float2 u = live.cam.Project(q);
-      float il, wl;
-      if (!imaging::SampleBilinear(live.intensity, u.x, u.y, &il) || il <= 0.f) continue;
-      if (!imaging::SampleBilinear(live.weight, u.x, u.y, &wl) || wl <= 0.f) continue;
-      r.push_back(double(i_ref) / double(il));
+      Match mt;
+      if (MatchPixel(ref, live, T_live_world, x, y, &mt)) r.push_back(double(mt.i_ref) / double(mt.il));
     }
   if (r.size() < 50) return 1;
   std::nth_element(r.begin(), r.begin() + long(r.size() / 2), r.end());
