@@ -24,10 +24,10 @@ std::string HeadlineTable(const json& tracking) {
   std::vector<std::string> modes;
   for (const auto& [mode, v] : tracking.items()) {
     modes.push_back(mode);
-    t += " ATE " + mode + " (cm) | lost " + mode + " |";
+    t += " ATE " + mode + " (cm) | first failure " + mode + " | lost " + mode + " |";
   }
   t += " frames/s (" + (modes.empty() ? std::string() : modes.front()) + ") |\n|---|---|";
-  for (std::size_t i = 0; i < modes.size(); ++i) t += "---|---|";
+  for (std::size_t i = 0; i < modes.size(); ++i) t += "---|---|---|";
   t += "---|\n";
   if (modes.empty()) return t;
   const json& first = tracking[modes.front()]["trackers"];
@@ -41,10 +41,12 @@ std::string HeadlineTable(const json& tracking) {
       for (const auto& r : tracking[m]["trackers"])
         if (r["id"] == id) row = &r;
       if (!row || row->contains("unavailable")) {
-        t += " - | - |";
+        t += " - | - | - |";
         continue;
       }
-      std::snprintf(b, sizeof b, " %.2f | %d |", 100 * (*row)["ate_rmse_m"].get<double>(), (*row)["lost"].get<int>());
+      const int ff = (*row)["first_failure"].get<int>();
+      std::snprintf(b, sizeof b, " %.2f | %s | %d |", 100 * (*row)["ate_rmse_m"].get<double>(),
+                    ff < 0 ? "none" : std::to_string(ff).c_str(), (*row)["lost"].get<int>());
       t += b;
     }
     if (first[k].contains("unavailable")) {

@@ -3,9 +3,11 @@
 // smooth); every tracker of eval::ExperimentTrackers runs on the frames read back from it,
 // and the peers (hdrfusion-peers: OpenCV rgbd, Open3D) run on the same folder in the same
 // run. Writes per-frame error plots, tracking.md and tracking.json.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -85,7 +87,8 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
       ", the real Xtion response, Kinect-like depth noise. Every tracker below reads the same sequence "
       "folder (colour as delivered, depth, intrinsics; ours also the calibrated response in sensor.json). "
       "ATE: RMSE of the camera positions after a rigid alignment to the truth; RPE: RMSE of the "
-      "frame-to-frame relative motion error. 'lost': frames the tracker itself reported failed (ours keep "
+      "frame-to-frame relative motion error. 'first failure': the first frame whose own motion is wrong by more "
+      "than 2 cm or 2 degrees. 'lost': frames the tracker itself reported failed (ours keep "
       "the last pose and do not fuse; peers keep the constant-velocity prediction). Wall time is measured in "
       "this run on this machine; 'covers' says what it includes.\n\n";
   const auto trackers = eval::ExperimentTrackers();
@@ -125,7 +128,12 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
     for (const auto& f : frames) truth.push_back(T0inv * f.T_world_camera_true.value());
     // 2. Our trackers and the baselines.
     std::vector<Row> rows;
-    pipeline::PipelineOptions engine;  // defaults: 256^3 voxels over 6 m, compact voxels, CPU
+    // Engine defaults (compact voxels, CPU) but a volume that holds the whole room: the
+    // default 6 m cube centred on the first camera leaves the far walls out, and a model
+    // with nothing in view loses frame-to-model tracking (docs/evaluation.md).
+    pipeline::PipelineOptions engine;
+    engine.volume.size_m = 10.f;
+    engine.volume.resolution = 512;
     for (std::size_t t = 0; t < trackers.size(); ++t) {
       const auto& spec = trackers[t];
       Progress p("tracking: " + ae + " " + std::to_string(t + 1) + "/" + std::to_string(trackers.size()) + " " +
@@ -152,8 +160,20 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
       const std::string cmd = Quote(peers.string()) + " " + Quote(seq_dir.string()) + " --out " + Quote(pout.string());
       std::fprintf(stderr, "tracking: %s peers: %s\n", ae.c_str(), cmd.c_str());
       const int rc = std::system(cmd.c_str());
-      if (rc != 0) throw Error("tracking: hdrfusion-peers failed (exit status " + std::to_string(rc) + "): " + cmd);
-      const json pj = io::ReadJsonFile(pout / "peers.json");
+      if (rc != 0) {
+        // The shell reports a killed child as exit status 128 + signal.
+        const int sig = WIFSIGNALED(rc) ? WTERMSIG(rc) : (WEXITSTATUS(rc) > 128 ? WEXITSTATUS(rc) - 128 : 0);
+        const std::string how = sig ? "killed by signal " + std::to_string(sig) + (sig == SIGKILL ? " (out of memory?)" : "")
+                                    : "exit status " + std::to_string(WEXITSTATUS(rc));
+        // Our own results stand: the table reports the failure instead of the peers.
+        std::fprintf(stderr, "tracking: hdrfusion-peers failed (%s): %s\n", how.c_str(), cmd.c_str());
+        Row r;
+        r.id = "peers";
+        r.kind = "peer";
+        r.covers = "unavailable: hdrfusion-peers failed (" + how + ")";
+        rows.push_back(std::move(r));
+      }
+      const json pj = rc == 0 ? io::ReadJsonFile(pout / "peers.json") : json{{"peers", json::array()}};
       for (const auto& e : pj.at("peers")) {
         Row r;
         r.id = e.at("id").get<std::string>();
@@ -223,13 +243,13 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
     json j = json::array();
     char line[512];
     std::string table =
-        "| tracker | kind | ATE RMSE (cm) | ATE max (cm) | RPE trans. (mm/frame) | RPE rot. (deg/frame) | lost | "
-        "wall (s) | frames/s | covers | plot colour |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| tracker | kind | ATE RMSE (cm) | ATE max (cm) | RPE trans. (mm/frame) | RPE rot. (deg/frame) | first "
+        "failure | lost | wall (s) | frames/s | covers | plot colour |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t k = 0; k < rows.size(); ++k) {
       const Row& r = rows[k];
       const Rgb8 c = kPalette[k % std::size(kPalette)];
       if (r.poses.empty()) {
-        std::snprintf(line, sizeof line, "| %s | peer | - | - | - | - | - | - | - | %s | - |\n", r.id.c_str(),
+        std::snprintf(line, sizeof line, "| %s | peer | - | - | - | - | - | - | - | - | %s | - |\n", r.id.c_str(),
                       r.covers.c_str());
         table += line;
         j.push_back({{"id", r.id}, {"label", r.label}, {"kind", r.kind}, {"unavailable", r.covers}});
@@ -237,11 +257,19 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
       }
       std::vector<double> tcm, rdeg = r.per_frame.rot_deg;
       for (double v : r.per_frame.trans_m) tcm.push_back(v * 100.0);
+      // The first frame whose own motion is wrong by more than 2 cm or 2 degrees.
+      int first_failure = -1;
+      for (int i = 1; i < n && first_failure < 0; ++i) {
+        const Pose e = (truth[std::size_t(i - 1)].inverse() * truth[std::size_t(i)]).inverse() *
+                       (r.poses[std::size_t(i - 1)].inverse() * r.poses[std::size_t(i)]);
+        if (se3::TranslationNorm(e) > 0.02 || se3::RotationAngle(e) > 2.0 * M_PI / 180.0) first_failure = i;
+      }
+      const std::string ff = first_failure < 0 ? "none" : std::to_string(first_failure);
       pt.Line(xs, tcm, c, 1);
       pr.Line(xs, rdeg, c, 1);
-      std::snprintf(line, sizeof line, "| %s | %s | %.2f | %.2f | %.2f | %.3f | %d | %.1f | %.1f | %s | %s |\n",
+      std::snprintf(line, sizeof line, "| %s | %s | %.2f | %.2f | %.2f | %.3f | %s | %d | %.1f | %.1f | %s | %s |\n",
                     r.id.c_str(), r.kind.c_str(), 100 * r.err.ate_rmse_m, 100 * r.err.ate_max_m,
-                    1000 * r.err.rpe_trans_rmse_m, r.err.rpe_rot_rmse_deg, r.lost, r.seconds,
+                    1000 * r.err.rpe_trans_rmse_m, r.err.rpe_rot_rmse_deg, ff.c_str(), r.lost, r.seconds,
                     double(n) / std::max(1e-9, r.seconds), r.covers.c_str(), Hex(c).c_str());
       table += line;
       j.push_back({{"id", r.id},
@@ -253,6 +281,7 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
                    {"rpe_trans_rmse_m", r.err.rpe_trans_rmse_m},
                    {"rpe_rot_rmse_deg", r.err.rpe_rot_rmse_deg},
                    {"lost", r.lost},
+                   {"first_failure", first_failure},
                    {"seconds", r.seconds},
                    {"covers", r.covers},
                    {"trans_error_m", r.per_frame.trans_m},

@@ -52,6 +52,8 @@ class Backend {
   virtual void BuildLive() = 0;
   virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_ref, const Pose& T_world_live) = 0;
   virtual long LiveValid() = 0;
+  // Reference pixels with a vertex at the finest level (what the live frame can match).
+  virtual long ReferenceValid() = 0;
   // 4. Exposure ratio of the live frame against the last ray cast.
   virtual tracking::ExposureEstimate EstimateExposure(const Pose& T_world_live) = 0;
   // 5. Fuses the live frame at a pose, radiance scaled by `ratio`; allocated bricks after.

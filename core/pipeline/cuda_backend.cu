@@ -158,6 +158,7 @@ class CudaBackend final : public Backend {
   void BuildLive() override;
   tracking::GnSystem Accumulate(int level, const Pose& T_world_ref, const Pose& T_world_live) override;
   long LiveValid() override;
+  long ReferenceValid() override;
   tracking::ExposureEstimate EstimateExposure(const Pose& T_world_live) override;
   void Integrate(const Pose& T_world_camera, float ratio) override;
   std::size_t AllocatedBricks() override { return allocated_; }
@@ -484,6 +485,15 @@ long CudaBackend::LiveValid() {
   const ImageView<const Float3> v = live_[0].vertex.view();
   const Count1 c = Sum<Count1>(v.width, v.height, [=] __device__(int x, int y, Count1& acc) {
     acc.v[0] += v(x, y).z > 0.f ? 1.0 : 0.0;
+  });
+  return long(c.v[0]);
+}
+
+long CudaBackend::ReferenceValid() {
+  const ImageView<const Float3> v = ref_[0].vertex.view();
+  const Count1 c = Sum<Count1>(v.width, v.height, [=] __device__(int x, int y, Count1& acc) {
+    const Float3 p = v(x, y);
+    acc.v[0] += (p.x != 0.f || p.y != 0.f || p.z != 0.f) ? 1.0 : 0.0;
   });
   return long(c.v[0]);
 }

@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -65,6 +66,12 @@ class CpuBackend final : public Backend {
                                    live_.levels[std::size_t(level)].view(), T_world_live, o_.tracker);
   }
 
+  long ReferenceValid() override {
+    long n = 0;
+    const auto& v = reference_.levels[0].vertex_w;
+    for (std::size_t i = 0; i < v.size(); ++i) n += v[i].z != 0.f || v[i].x != 0.f || v[i].y != 0.f;
+    return n;
+  }
   long LiveValid() override {
     long n = 0;
     const auto& v = live_.levels[0].vertex_c;
@@ -243,11 +250,15 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     rep.tracking.T_world_camera = pose_;
     rep.tracking.inlier_share = 1;
   } else {
-    // Start from a constant-velocity prediction (the last inter-frame motion, repeated).
+    // Start from a constant-velocity prediction (the last inter-frame motion, repeated). The
+    // inlier share counts matches against what both sides can offer: where the model covers
+    // only part of the view (an area not scanned yet, or beyond the volume), matching all of
+    // that part is a success, not a loss.
     const Pose predicted = se3::Orthonormalized(pose_ * (previous_pose_.inverse() * pose_));
     const Pose T_ref = reference_pose_;
     rep.tracking = tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T_ref, T); },
-                                   o_.tracker.levels, b.LiveValid(), predicted, o_.tracker);
+                                   o_.tracker.levels, std::min(b.LiveValid(), b.ReferenceValid()), predicted,
+                                   o_.tracker);
     if (!rep.tracking.lost) {
       previous_pose_ = pose_;
       pose_ = rep.tracking.T_world_camera;

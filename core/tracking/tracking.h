@@ -104,7 +104,8 @@ TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
 
 // The Gauss-Newton loop itself, for any backend: `accumulate(level, T_world_live)` returns
 // the summed normal equations at that pyramid level (0 = finest) and pose; `live_valid` is
-// the number of live pixels with depth at the finest level (for the inlier share).
+// the number of pixels that could match at the finest level (for the inlier share): the
+// live pixels with depth, or fewer where the reference covers less.
 using Accumulator = std::function<GnSystem(int level, const Pose& T_world_live)>;
 TrackResult Track(const Accumulator& accumulate, int levels, long live_valid, const Pose& initial,
                   const TrackerOptions& o);
