@@ -45,7 +45,7 @@ Command AddBenchCommand(CLI::App& app) {
   cmd->add_option("--size", a->size, "tracking: image size")->capture_default_str();
   cmd->add_option("--ae", a->ae, "tracking: auto-exposure modes")->delimiter(',')
       ->check(CLI::IsMember({"flicker", "smooth", "fixed"}))->capture_default_str();
-  cmd->add_option("--work", a->work, "tracking: folder for the sequences the peers read")->capture_default_str();
+  cmd->add_option("--work", a->work, "tracking: folder for the sequences everyone reads (its room-* and peers-* folders are replaced)")->capture_default_str();
   cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
   return {cmd, [a, frames_opt] {
     if (a->suite == "radiance")

@@ -11,6 +11,7 @@
 // seconds, frames and failed frames. Inputs are those of our engine: the colour as
 // delivered (grey for the trackers that take grey), depth in metres, the intrinsics.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -237,6 +238,15 @@ int main(int argc, char** argv) {
     const std::size_t n = frames > 0 ? std::min(seq.size(), std::size_t(frames)) : seq.size();
     if (n < 2) throw InputError(seq_dir, "needs at least 2 frames");
     fs::create_directories(out);
+    const std::vector<std::string> known = {"opencv-rgbd", "opencv-icp", "opencv-rgbd-icp", "opencv-kinfu", "open3d"};
+    {
+      std::stringstream ss(only);
+      std::string t;
+      while (std::getline(ss, t, ','))
+        if (std::find(known.begin(), known.end(), t) == known.end())
+          throw SettingError("--only", "unknown peer '" + t +
+                                           "'; choose from opencv-rgbd, opencv-icp, opencv-rgbd-icp, opencv-kinfu, open3d");
+    }
     auto wanted = [&](const std::string& id) {
       if (only.empty()) return true;
       std::stringstream ss(only);

@@ -288,6 +288,10 @@ TEST(Cli, TrackingExperimentComparesEveryTrackerOnTheSameFrames) {
                                       (tmp / "missing").string() + " --out " + (tmp / "p").string());
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.output.find("missing"), std::string::npos) << bad.output;
+    const auto bad_only = test::RunCommand((fs::path(HDRF_CLI).parent_path() / "hdrfusion-peers").string() + " " +
+                                           work + "/room-flicker --only opencv --out " + (tmp / "p").string());
+    EXPECT_EQ(bad_only.status, 1);
+    EXPECT_NE(bad_only.output.find("unknown peer 'opencv'"), std::string::npos) << bad_only.output;
   } else {
     EXPECT_NE(r.output.find("peers not run"), std::string::npos) << r.output;
   }
