@@ -26,15 +26,17 @@ Command AddBenchCommand(CLI::App& app) {
     std::string size = "320x240", work = "build/bench-data";
     std::vector<std::string> ae = {"flicker", "smooth"};
     bool no_peers = false;
+    std::string data = "../shared/data";
+    int sweeps = 0;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
                   "sim (the synthetic sensor), engine (per-stage times), landscape (error functions "
                   "around the true pose, the paper's figure), nr-figure (NR across an exposure change), tracking "
-                  "(trackers and peers over 1000 frames), radiance (HDR accuracy, dynamic range), or paper "
-                  "(all of docs/results)")
-      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking", "radiance", "paper"}))->capture_default_str();
+                  "(trackers and peers over 1000 frames), radiance (HDR accuracy, dynamic range), calibration "
+                  "(response fitting on every DoRF curve), or paper (all of docs/results)")
+      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking", "radiance", "calibration", "paper"}))->capture_default_str();
   cmd->add_option("--out", a->out, "landscape, nr-figure: output folder")->capture_default_str();
   cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
       ->capture_default_str();
@@ -46,6 +48,9 @@ Command AddBenchCommand(CLI::App& app) {
   cmd->add_option("--ae", a->ae, "tracking: auto-exposure modes")->delimiter(',')
       ->check(CLI::IsMember({"flicker", "smooth", "fixed"}))->capture_default_str();
   cmd->add_option("--work", a->work, "tracking: folder for the sequences everyone reads (its room-* and peers-* folders are replaced)")->capture_default_str();
+  cmd->add_option("--data", a->data, "calibration: folder holding dorf/ and emor/ (SOURCES.md)")->capture_default_str();
+  cmd->add_option("--sweeps", a->sweeps, "calibration: at most this many sweeps of 3 curves (default: all 67)")
+      ->check(CLI::Range(1, 1000));
   cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
   return {cmd, [a, frames_opt] {
     if (a->suite == "radiance")
@@ -60,6 +65,7 @@ Command AddBenchCommand(CLI::App& app) {
       t.peers = !a->no_peers;
       return a->suite == "paper" ? RunPaper(t, a->pairs) : RunTrackingExperiment(t);
     }
+    if (a->suite == "calibration") return RunCalibrationAccuracy(a->out, a->data, a->sweeps);
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
     if (a->suite == "nr-figure") return RunNrFigure(a->out);
     if (a->suite == "engine") {

@@ -66,7 +66,7 @@ void WritePlots(const fs::path& dir, const InverseResponse& inv, const PcfTables
 Command AddCalibrateCommand(CLI::App& app) {
   struct Args {
     std::string sweep, out, method = "debevec", basis, plots;
-    int emor_components = 6;
+    int emor_components = EmorOptions{}.components;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -105,6 +105,16 @@ Command AddCalibrateCommand(CLI::App& app) {
       std::printf("  %c: rms log residual %.4f (%.2f %%), %d sample pixels, f^-1(255)/f^-1(128) = %.2f\n",
                   ch[c], fit.rms_log_residual[c], 100 * (std::exp(fit.rms_log_residual[c]) - 1),
                   fit.samples_used[c], fit.inverse.table[c][255]);
+    if (fit.method == "emor") {
+      const double gap = std::max({fit.basis_gap[0], fit.basis_gap[1], fit.basis_gap[2]});
+      std::printf("  EMoR against the free-form (Debevec) curve of the same sweep: largest difference "
+                  "%.2f %% / %.2f %% / %.2f %% of the range (R/G/B, levels 5-250)\n",
+                  100 * fit.basis_gap[0], 100 * fit.basis_gap[1], 100 * fit.basis_gap[2]);
+      if (gap > 0.01)
+        std::printf("  warning: this camera's response lies outside what %d EMoR components represent "
+                    "(%.1f %% apart); --method debevec follows it more closely\n", a->emor_components,
+                    100 * gap);
+    }
     double max_step = 0;
     for (auto it = std::next(per_exposure.begin()); it != per_exposure.end(); ++it)
       max_step = std::max(max_step, std::log2(it->first / std::prev(it)->first));

@@ -41,6 +41,9 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a);
 int RunPaper(const TrackingExperimentArgs& a, int pairs);
 // Radiance accuracy and dynamic range per scene (cmd_radiance_bench.cpp), `bench --suite radiance`.
 int RunRadianceAccuracy(const std::string& out_dir, int frames, const std::string& size);
+// Response recovery on every DoRF curve (cmd_calibration_bench.cpp), `bench --suite
+// calibration`; `triplets` > 0 limits the number of sweeps (3 curves each).
+int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_dir, int triplets);
 // The normalized-radiance figure (cmd_nr_figure.cpp), run by `bench --suite nr-figure`.
 int RunNrFigure(const std::string& out_dir);
 

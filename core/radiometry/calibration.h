@@ -33,18 +33,22 @@ struct ClipLevels {
 };
 
 struct DebevecOptions {
-  int samples = 1000;     // pixel locations sampled (stratified by brightness)
-  double lambda = 50.0;   // smoothness weight on g'' (g = ln f^-1)
+  int samples = 3000;     // pixel locations sampled (stratified by brightness)
+  double lambda = 100.0;  // smoothness weight on g'' (g = ln f^-1)
   ClipLevels clip;
 };
 struct RobertsonOptions {
   int samples = 20000;  // pixel locations used
   int iterations = 60;
+  // Weight of a second-difference penalty in the M-step, relative to the mean number of
+  // observations per level. Exposures a constant ratio apart (half-stop brackets) leave the
+  // curve undetermined up to a wave periodic in log radiance (Grossberg & Nayar); with no
+  // penalty it shows as +-1 % ripples on strongly compressive curves.
+  double smoothness = 10.0;
   ClipLevels clip;
 };
 struct EmorOptions {
-  int components = 6;   // hinv_1..hinv_K of the basis (the paper: 3 to 5 are usual)
-  int samples = 3000;
+  int components = 15;  // hinv_1..hinv_K of the basis
   ClipLevels clip;
 };
 
@@ -63,11 +67,20 @@ struct ResponseFit {
   std::array<double, 3> rms_log_residual{};
   std::array<int, 3> samples_used{};
   std::string method;
+  // EMoR only: the largest difference over levels 5..250 between this curve and the
+  // free-form Debevec curve of the same sweep (after one scale per channel), as a share of
+  // the range, and the level where it is. Large (over 1 %) when the camera's response lies
+  // outside what the basis can represent; then the free-form methods are the better choice.
+  std::array<double, 3> basis_gap{};
+  std::array<int, 3> basis_gap_level{};
 };
 
 ResponseFit FitDebevec(const Sweep& sweep, const DebevecOptions& options = {});
 ResponseFit FitRobertson(const Sweep& sweep, const RobertsonOptions& options = {});
 ResponseFit FitEmor(const Sweep& sweep, const EmorBasis& basis, const EmorOptions& options = {});
+
+// The documented scale: divides each channel by its value at level 128 (left alone where 0).
+void ScaleToUnitAt128(InverseResponse& inverse);
 
 // Makes each channel non-decreasing by least-squares isotonic regression (pool adjacent
 // violators), then rescales so that f^-1(128) = 1.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "eval/calibration_accuracy.h"
 #include "radiometry/calibration.h"
 #include "radiometry/pcf.h"
 #include "sim/builtin_sensor.h"
@@ -17,140 +18,60 @@
 namespace hdrf::radiometry {
 namespace {
 
-}  // namespace
-void NormaliseForTest(InverseResponse& r);
-namespace {
+using eval::SimulateSweep;
 
 const NoiseModel kTestNoise{{0.030f, 0.025f, 0.035f}, {0.020f, 0.015f, 0.025f}};
 
-// A half-stop sweep from 0.25 to 128 ms (19 exposures), as calibrate's report recommends.
-Sweep SimulatedSweep(const InverseResponse& truth, const NoiseModel& noise, int repeats = 2,
-                     int width = 160, int height = 120) {
-  sim::SimOptions o;
-  o.width = width;
-  o.height = height;
-  o.sweep = true;
-  o.sweep_exposures_ms.clear();
-  for (int k = 0; k <= 18; ++k) o.sweep_exposures_ms.push_back(0.25 * std::pow(2.0, k / 2.0));
-  o.sweep_repeats = repeats;
-  o.response = truth;
-  o.noise = noise;
-  sim::SyntheticSource src(o);
-  Sweep s;
-  s.source = "simulated sweep";
-  while (!src.done()) {
-    sim::SimFrame f = src.Next();
-    s.images.push_back(std::move(f.color));
-    s.exposure_ms.push_back(f.exposure_ms);
-  }
-  return s;
-}
-
-// Best scale per channel (least squares over levels 5..250), then the largest error over
-// those levels as a share of the true full range. Returns the worst channel; scale[c] gets
-// the factor that maps the estimate onto the truth.
-double RangeError(const InverseResponse& est, const InverseResponse& truth,
-                  std::array<double, 3>* scale = nullptr) {
-  double worst = 0;
-  for (int c = 0; c < 3; ++c) {
-    double num = 0, den = 0;
-    for (int i = 5; i <= 250; ++i) {
-      num += double(est.table[c][i]) * truth.table[c][i];
-      den += double(est.table[c][i]) * est.table[c][i];
-    }
-    const double s = num / den;
-    if (scale) (*scale)[c] = s;
-    const double range = truth.table[c][255] - truth.table[c][0];
-    for (int i = 5; i <= 250; ++i)
-      worst = std::max(worst, std::abs(s * est.table[c][i] - truth.table[c][i]) / range);
-  }
-  return worst;
-}
-
-// DoRF inverse curves: row k gives irradiance at brightness B_j = j / 1023.
-InverseResponse DorfCurves(const std::filesystem::path& file, int k_r, int k_g, int k_b) {
-  std::ifstream in(file);
-  std::string line;
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream ss(line);
-    rows.emplace_back();
-    double v;
-    while (ss >> v) rows.back().push_back(v);
-  }
-  InverseResponse r;
-  const int ks[3] = {k_r, k_g, k_b};
-  for (int c = 0; c < 3; ++c) {
-    const auto& row = rows.at(std::size_t(ks[c]));
-    for (int i = 0; i < 256; ++i) {
-      const double x = i * 1023.0 / 255.0;
-      const int j = std::min(1022, int(x));
-      // A tiny ramp keeps flat runs of the quantised table strictly increasing.
-      r.table[c][i] = float(row[std::size_t(j)] + (row[std::size_t(j + 1)] - row[std::size_t(j)]) * (x - j) + 1e-4 * i / 255.0);
-    }
-  }
-  NormaliseForTest(r);
+InverseResponse Normalised(InverseResponse r) {
+  ScaleToUnitAt128(r);
   return r;
 }
 
-}  // namespace
-
-// Scale a truth table like the fits are scaled (f^-1(128) = 1), so noise units match.
-void NormaliseForTest(InverseResponse& r) {
-  for (int c = 0; c < 3; ++c) {
-    const float s = r.table[c][128];
-    for (float& v : r.table[c]) v /= s;
-  }
+InverseResponse DorfTriplet(const std::vector<std::vector<double>>& rows, int k_r, int k_g, int k_b) {
+  return eval::InverseFromCurves({&rows.at(std::size_t(k_r)), &rows.at(std::size_t(k_g)), &rows.at(std::size_t(k_b))});
 }
 
-namespace {
-
-// The target is 1 % of full range over levels 5..250. Debevec and Robertson meet it on the
-// Xtion, BorealHDR and most DoRF curves; two known gaps are asserted at what they measure
-// today, so a regression still fails (docs/calibration.md, "Known gaps"):
-// - EMoR, whose low-order basis cannot follow steep knees at levels 245-250 (Xtion: not
-//   claimed at all; DoRF: within 5 %),
-// - DoRF curve 130, whose last 5 levels rise by 35 % of its range (within 4 %).
-void CheckMethods(const InverseResponse& truth, const char* name, bool with_emor,
-                  bool emor_claimed = true, double classic_tolerance = 0.01,
-                  double emor_tolerance = 0.05) {
-  const Sweep s = SimulatedSweep(truth, kTestNoise);
-  const ResponseFit deb = FitDebevec(s);
-  const ResponseFit rob = FitRobertson(s);
-  const double e_deb = RangeError(deb.inverse, truth), e_rob = RangeError(rob.inverse, truth);
-  std::printf("%s: worst error over levels 5-250 as share of full range: debevec %.4f, robertson %.4f",
-              name, e_deb, e_rob);
-  EXPECT_LT(e_deb, classic_tolerance) << name;
-  EXPECT_LT(e_rob, classic_tolerance) << name;
+// The target is 1 % of full range over levels 5..250 (CompareResponse, after one scale per
+// channel). Asserted for every method on the `bin` figure (the estimate maps back to the
+// right level through the true camera) and on the pointwise figure wherever the true
+// camera's level bands are all narrower than 2 % of the range; where a measured curve jumps
+// (DoRF 130: the forward response is flat across bands of 4-17 % of its range at levels
+// 249-253) the pointwise figure is held at what it measures (docs/calibration.md).
+void CheckMethods(const InverseResponse& truth, const char* name, bool with_emor) {
+  const Sweep s = SimulateSweep(truth, kTestNoise);
+  std::vector<ResponseFit> fits = {FitDebevec(s), FitRobertson(s)};
   if (with_emor) {
     const auto basis_file = test::SharedData("emor/invemor.txt");
-    if (!basis_file.empty()) {
-      const ResponseFit em = FitEmor(s, EmorBasis::Load(basis_file));
-      const double e_em = RangeError(em.inverse, truth);
-      std::printf(", emor %.4f%s", e_em, emor_claimed ? "" : " (not claimed)");
-      if (emor_claimed) EXPECT_LT(e_em, emor_tolerance) << name;
+    if (!basis_file.empty()) fits.push_back(FitEmor(s, EmorBasis::Load(basis_file)));
+  }
+  std::printf("%s, worst error over levels 5-250 as a share of full range (pointwise / from "
+              "the level's band):", name);
+  for (const ResponseFit& fit : fits) {
+    const eval::ResponseAccuracy a = eval::CompareResponse(fit.inverse, truth);
+    const double widest = std::max({a.widest_bin[0], a.widest_bin[1], a.widest_bin[2]});
+    std::printf(" %s %.4f / %.4f", fit.method.c_str(), a.PointMax(), a.BinMax());
+    EXPECT_LT(a.BinMax(), 0.01) << name << " " << fit.method;
+    EXPECT_LT(a.PointMax(), widest < 0.02 ? 0.01 : 0.04) << name << " " << fit.method;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_FLOAT_EQ(fit.inverse.table[c][128], 1.0f);  // the documented scale
+      for (int i = 1; i < 256; ++i) ASSERT_GE(fit.inverse.table[c][i], fit.inverse.table[c][i - 1]);
     }
   }
   std::printf("\n");
-  for (const auto* fit : {&deb, &rob})
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_FLOAT_EQ(fit->inverse.table[c][128], 1.0f);  // the documented scale
-      for (int i = 1; i < 256; ++i) ASSERT_GE(fit->inverse.table[c][i], fit->inverse.table[c][i - 1]);
-    }
 }
 
 TEST(Calibration, RecoversTheXtionResponse) {
-  CheckMethods(*sim::BuiltinXtionProfile().response, "xtion", true, false);
+  CheckMethods(Normalised(*sim::BuiltinXtionProfile().response), "xtion", true);
 }
 
 TEST(Calibration, RecoversDorfResponses) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
+  const auto rows = eval::LoadDorfInverseCurves(file);
+  ASSERT_EQ(rows.size(), 201u);
   for (int k : {0, 57, 123, 190}) {
     const std::string name = "dorf " + std::to_string(k) + "/" + std::to_string(k + 3) + "/" + std::to_string(k + 7);
-    CheckMethods(DorfCurves(file, k, k + 3, k + 7), name.c_str(), true, true,
-                 k == 123 ? 0.04 : 0.01);
+    CheckMethods(DorfTriplet(rows, k, k + 3, k + 7), name.c_str(), true);
   }
 }
 
@@ -164,15 +85,48 @@ TEST(Calibration, RecoversBorealHdrMeasuredResponse) {
     ASSERT_TRUE(in >> v);
     for (int c = 0; c < 3; ++c) r.table[c][i] = float(v);
   }
-  NormaliseForTest(r);
-  CheckMethods(r, "borealhdr", false);
+  CheckMethods(Normalised(r), "borealhdr", false);
+}
+
+// The two figures on hand-made cases: an estimate inside the true level's band scores 0 on
+// `bin` and its offset on `point`; one outside scores its distance to the band.
+TEST(Calibration, ResponseAccuracyFigures) {
+  InverseResponse truth;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) truth.table[c][i] = float(i);  // bands of width 1 (of 255)
+  InverseResponse inside = truth, outside = truth;
+  inside.table[1][100] += 0.4f;
+  outside.table[2][200] += 2.0f;  // 1.5 beyond the band's upper edge
+  const eval::ResponseAccuracy a = eval::CompareResponse(inside, truth);
+  EXPECT_NEAR(a.point[1], 0.4 / 255, 1e-4);
+  EXPECT_EQ(a.point_level[1], 100);
+  EXPECT_NEAR(a.BinMax(), 0.0, 1e-4);
+  const eval::ResponseAccuracy b = eval::CompareResponse(outside, truth);
+  EXPECT_NEAR(b.bin[2], 1.5 / 255, 1e-4);
+  EXPECT_EQ(b.bin_level[2], 200);
+  EXPECT_NEAR(b.widest_bin[0], 1.0 / 255, 1e-6);
+  // A scaled estimate is as good as the truth (one scale per channel is free).
+  InverseResponse scaled = truth;
+  for (float& v : scaled.table[0]) v *= 3;
+  EXPECT_LT(eval::CompareResponse(scaled, truth).PointMax(), 1e-6);
+}
+
+TEST(Calibration, DorfFileErrorsNamed) {
+  test::TempDir dir;
+  test::WriteText(dir / "short.txt", "# comment\n0 0.5 1\n");
+  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "short.txt"); },
+                              {"short.txt:2", "3 values, expected 1024"});
+  std::string bad;
+  for (int j = 0; j < 1024; ++j) bad += j == 7 ? "x " : "0.5 ";
+  test::WriteText(dir / "bad.txt", bad + "\n");
+  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "bad.txt"); }, {"bad.txt", "'x'"});
+  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "none.txt"); }, {"none.txt", "missing"});
 }
 
 TEST(Calibration, NoiseLevelFunctionWithinTenPercent) {
   // Truth in the calibration's own units (f^-1(128) = 1), so the sigmas compare directly.
-  InverseResponse truth = *sim::BuiltinXtionProfile().response;
-  NormaliseForTest(truth);
-  const Sweep s = SimulatedSweep(truth, kTestNoise, 6);
+  const InverseResponse truth = Normalised(*sim::BuiltinXtionProfile().response);
+  const Sweep s = SimulateSweep(truth, kTestNoise, 6);
   const ResponseFit fit = FitDebevec(s);
   const NoiseFit nf = FitNoise(s, fit.inverse);
   for (int c = 0; c < 3; ++c) {
@@ -254,17 +208,17 @@ TEST(Calibration, EnforceMonotonicPoolsViolators) {
 
 TEST(Calibration, BadSweepsAreRefusedWithAReason) {
   const InverseResponse truth = *sim::BuiltinXtionProfile().response;
-  Sweep one = SimulatedSweep(truth, kTestNoise, 2, 64, 48);
+  Sweep one = SimulateSweep(truth, kTestNoise, 2, 64, 48);
   for (double& e : one.exposure_ms) e = 8;
   test::ExpectErrorContaining([&] { FitDebevec(one); }, {"single exposure", "8 ms"});
 
-  Sweep saturated = SimulatedSweep(truth, kTestNoise, 1, 64, 48);
+  Sweep saturated = SimulateSweep(truth, kTestNoise, 1, 64, 48);
   for (auto& im : saturated.images)
     for (std::size_t p = 0; p < im.size(); ++p) im[p] = {255, 255, 255};
   test::ExpectErrorContaining([&] { FitRobertson(saturated); }, {"clipped"});
 
   // The camera moved: the second half of the frames is shifted by 9 pixels.
-  Sweep moved = SimulatedSweep(truth, kTestNoise, 1, 96, 72);
+  Sweep moved = SimulateSweep(truth, kTestNoise, 1, 96, 72);
   for (std::size_t j = moved.images.size() / 2; j < moved.images.size(); ++j) {
     ColorImage shifted(96, 72);
     for (int y = 0; y < 72; ++y)
@@ -273,10 +227,23 @@ TEST(Calibration, BadSweepsAreRefusedWithAReason) {
   }
   test::ExpectErrorContaining([&] { FitDebevec(moved); }, {"moved"});
   // The unshifted sweep passes the same check.
-  EXPECT_NO_THROW(CheckSweep(SimulatedSweep(truth, kTestNoise, 1, 96, 72)));
+  EXPECT_NO_THROW(CheckSweep(SimulateSweep(truth, kTestNoise, 1, 96, 72)));
 
-  Sweep no_repeats = SimulatedSweep(truth, kTestNoise, 1, 64, 48);
+  Sweep no_repeats = SimulateSweep(truth, kTestNoise, 1, 64, 48);
   test::ExpectErrorContaining([&] { FitNoise(no_repeats, truth); }, {"3 frames per exposure"});
+}
+
+// Noise is not motion: near black, a steep measured response turns sensor noise into many
+// levels (DoRF 159: +-10 levels over its lower half), and single pixels of the 0.25 and
+// 0.35 ms frames disagreed on their order in 6-13 % of pairs with no motion at all; such
+// sweeps were refused as "moved" until the order test moved to 4 x 4 block means. The
+// 9-pixel shift above is still caught.
+TEST(Calibration, SteepToeNoiseIsNotMotion) {
+  const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
+  HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
+  const auto rows = eval::LoadDorfInverseCurves(file);
+  for (int k : {14, 25})
+    EXPECT_NO_THROW(CheckSweep(SimulateSweep(DorfTriplet(rows, k, k + 67, k + 134), kTestNoise))) << k;
 }
 
 TEST(Calibration, EmorBasisFileErrorsNamed) {
