@@ -48,7 +48,7 @@ Command AddBenchCommand(CLI::App& app) {
   cmd->add_option("--ae", a->ae, "tracking: auto-exposure modes")->delimiter(',')
       ->check(CLI::IsMember({"flicker", "smooth", "fixed"}))->capture_default_str();
   cmd->add_option("--work", a->work, "tracking: folder for the sequences everyone reads (its room-* and peers-* folders are replaced)")->capture_default_str();
-  cmd->add_option("--data", a->data, "calibration: folder holding dorf/ and emor/ (SOURCES.md)")->capture_default_str();
+  cmd->add_option("--data", a->data, "calibration, paper: folder holding dorf/ and emor/ (SOURCES.md)")->capture_default_str();
   cmd->add_option("--sweeps", a->sweeps, "calibration: at most this many sweeps of 3 curves (default: all 67)")
       ->check(CLI::Range(1, 1000));
   cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
@@ -63,7 +63,7 @@ Command AddBenchCommand(CLI::App& app) {
       t.out = a->out;
       t.work = a->work;
       t.peers = !a->no_peers;
-      return a->suite == "paper" ? RunPaper(t, a->pairs) : RunTrackingExperiment(t);
+      return a->suite == "paper" ? RunPaper(t, a->pairs, a->data) : RunTrackingExperiment(t);
     }
     if (a->suite == "calibration") return RunCalibrationAccuracy(a->out, a->data, a->sweeps);
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);

@@ -1,6 +1,7 @@
 // `hdrfusion bench --suite paper`: regenerates every table and figure of docs/results in one
 // run (error landscape, NR figure, tracking experiment with the peers, radiance accuracy),
 // then writes docs/results/README.md, the index with the headline numbers.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -61,13 +62,13 @@ std::string HeadlineTable(const json& tracking) {
 
 }  // namespace
 
-int RunPaper(const TrackingExperimentArgs& a, int pairs) {
+int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data_dir) {
   const fs::path out = a.out;
   fs::create_directories(out);
   const auto t0 = std::chrono::steady_clock::now();
   auto step = [&](int k, const char* what) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr, "\npaper: step %d/4 (%.0f s so far): %s\n", k, s, what);
+    std::fprintf(stderr, "\npaper: step %d/5 (%.0f s so far): %s\n", k, s, what);
   };
   step(1, "error landscape");
   if (int rc = RunLandscape(a.out, pairs, 10)) return rc;
@@ -77,6 +78,12 @@ int RunPaper(const TrackingExperimentArgs& a, int pairs) {
   if (int rc = RunTrackingExperiment(a)) return rc;
   step(4, "radiance accuracy and dynamic range");
   if (int rc = RunRadianceAccuracy(a.out, 300, a.size)) return rc;
+  step(5, "response recovery on every DoRF curve");
+  const bool have_dorf = fs::exists(fs::path(data_dir) / "dorf/dorf_invI_201x1024.txt");
+  if (!have_dorf)
+    std::fprintf(stderr, "paper: %s/dorf is missing: no calibration section\n", data_dir.c_str());
+  else if (int rc = RunCalibrationAccuracy(a.out, data_dir, 0))
+    return rc;
   const json tracking = io::ReadJsonFile(out / "tracking.json");
   const json radiance = io::ReadJsonFile(out / "radiance.json");
   const json landscape = io::ReadJsonFile(out / "landscape.json");
@@ -108,6 +115,24 @@ int RunPaper(const TrackingExperimentArgs& a, int pairs) {
     md += b;
   }
   md += "\nDetails: [landscape.md](landscape.md). The normalized-radiance figure: [nr_figure.md](nr_figure.md).\n";
+  if (have_dorf) {
+    const json cal = io::ReadJsonFile(out / "calibration.json");
+    md += "\n## Camera response recovery (all 201 DoRF curves, simulated sweeps)\n\n| method | within 1 % of the "
+          "range (band) | worst (band) |\n|---|---|---|\n";
+    for (const auto& [method, v] : cal.items()) {
+      long n = 0, ok = 0;
+      double worst = 0;
+      for (const auto& c : v["curves"])
+        if (c["curve"].get<std::string>().rfind("dorf", 0) == 0) {
+          ++n;
+          ok += c["band"].get<double>() < 0.01;
+          worst = std::max(worst, c["band"].get<double>());
+        }
+      std::snprintf(b, sizeof b, "| %s | %ld of %ld | %.2f %% |\n", method.c_str(), ok, n, 100 * worst);
+      md += b;
+    }
+    md += "\nDetails: [calibration.md](calibration.md).\n";
+  }
   io::WriteFileAtomically(out / "README.md", md);
   std::printf("\n%s\nwrote %s/README.md\n", md.c_str(), a.out.c_str());
   return 0;

@@ -38,7 +38,7 @@ struct TrackingExperimentArgs {
 };
 int RunTrackingExperiment(const TrackingExperimentArgs& a);
 // Everything above, then docs/results/README.md (cmd_paper.cpp), `bench --suite paper`.
-int RunPaper(const TrackingExperimentArgs& a, int pairs);
+int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data_dir);
 // Radiance accuracy and dynamic range per scene (cmd_radiance_bench.cpp), `bench --suite radiance`.
 int RunRadianceAccuracy(const std::string& out_dir, int frames, const std::string& size);
 // Response recovery on every DoRF curve (cmd_calibration_bench.cpp), `bench --suite

@@ -48,7 +48,7 @@ struct RobertsonOptions {
   ClipLevels clip;
 };
 struct EmorOptions {
-  int components = 15;  // hinv_1..hinv_K of the basis
+  int components = 25;  // hinv_1..hinv_K of the basis (invemor.txt has 25)
   ClipLevels clip;
 };
 

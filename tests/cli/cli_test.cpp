@@ -316,5 +316,28 @@ TEST(Cli, RadianceSuiteMeasuresAccuracyAndDynamicRangePerScene) {
   }
 }
 
+// bench --suite calibration on one sweep of three DoRF curves: every method within 1 % (band)
+// of the true curves, the table and per-curve JSON written; a missing data folder is named.
+TEST(Cli, CalibrationSuiteMeasuresEveryMethodOnDorfCurves) {
+  const auto data = test::SharedDataDir();
+  HDRF_SKIP_WITHOUT(test::SharedData("dorf/dorf_invI_201x1024.txt"), "dorf/dorf_invI_201x1024.txt");
+  test::TempDir tmp;
+  const std::string out = (tmp / "results").string();
+  auto r = RunCli("bench --suite calibration --sweeps 1 --data " + data.string() + " --out " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/calibration.json"));
+  for (const char* m : {"debevec", "robertson"}) {
+    ASSERT_TRUE(j.contains(m)) << m;
+    // 3 DoRF curves, the Xtion's 3 channels and, where present, BorealHDR's 3.
+    EXPECT_GE(j[m]["curves"].size(), 6u);
+    for (const auto& c : j[m]["curves"]) EXPECT_LT(c["band"].get<double>(), 0.01) << m << " " << c["curve"];
+  }
+  EXPECT_NE(test::ReadText(tmp / "results" / "calibration.md").find("| debevec | 3 |"), std::string::npos);
+  r = RunCli("bench --suite calibration --sweeps 1 --data " + (tmp / "none").string() + " --out " + out);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("dorf_invI_201x1024.txt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace hdrf

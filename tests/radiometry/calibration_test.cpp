@@ -3,6 +3,7 @@
 // where present), then the real Memorial sweep (tests/io).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -32,12 +33,15 @@ InverseResponse DorfTriplet(const std::vector<std::vector<double>>& rows, int k_
 }
 
 // The target is 1 % of full range over levels 5..250 (CompareResponse, after one scale per
-// channel). Asserted for every method on the `bin` figure (the estimate maps back to the
-// right level through the true camera) and on the pointwise figure wherever the true
-// camera's level bands are all narrower than 2 % of the range; where a measured curve jumps
-// (DoRF 130: the forward response is flat across bands of 4-17 % of its range at levels
-// 249-253) the pointwise figure is held at what it measures (docs/calibration.md).
-void CheckMethods(const InverseResponse& truth, const char* name, bool with_emor) {
+// channel), asserted per channel for every method on the `band` figure (the estimate maps
+// back to the right level through the true camera), and on the pointwise figure wherever
+// the true camera's level bands are all narrower than 2 % of the range. Where a measured
+// curve jumps (DoRF 130: the forward response is flat across bands of up to 9 % of its range
+// at levels 249-253) no image can place f^-1 inside the band; the pointwise figure is held
+// at 4 % there. One known gap (docs/calibration.md): Robertson on the strongly compressive
+// DoRF 171 (within 1.5 %, `robertson_tolerance`).
+void CheckMethods(const InverseResponse& truth, const char* name, bool with_emor,
+                  double robertson_tolerance = 0.01) {
   const Sweep s = SimulateSweep(truth, kTestNoise);
   std::vector<ResponseFit> fits = {FitDebevec(s), FitRobertson(s)};
   if (with_emor) {
@@ -48,11 +52,11 @@ void CheckMethods(const InverseResponse& truth, const char* name, bool with_emor
               "the level's band):", name);
   for (const ResponseFit& fit : fits) {
     const eval::ResponseAccuracy a = eval::CompareResponse(fit.inverse, truth);
-    const double widest = std::max({a.widest_bin[0], a.widest_bin[1], a.widest_bin[2]});
     std::printf(" %s %.4f / %.4f", fit.method.c_str(), a.PointMax(), a.BinMax());
-    EXPECT_LT(a.BinMax(), 0.01) << name << " " << fit.method;
-    EXPECT_LT(a.PointMax(), widest < 0.02 ? 0.01 : 0.04) << name << " " << fit.method;
     for (int c = 0; c < 3; ++c) {
+      const double target = fit.method == "robertson" ? robertson_tolerance : 0.01;
+      EXPECT_LT(a.bin[c], target) << name << " " << fit.method << " " << c;
+      EXPECT_LT(a.point[c], a.widest_bin[c] < 0.02 ? target : 0.04) << name << " " << fit.method << " " << c;
       EXPECT_FLOAT_EQ(fit.inverse.table[c][128], 1.0f);  // the documented scale
       for (int i = 1; i < 256; ++i) ASSERT_GE(fit.inverse.table[c][i], fit.inverse.table[c][i - 1]);
     }
@@ -64,14 +68,17 @@ TEST(Calibration, RecoversTheXtionResponse) {
   CheckMethods(Normalised(*sim::BuiltinXtionProfile().response), "xtion", true);
 }
 
+// Triplets across the database, with its hardest curves for each method in the last one
+// (bench --suite calibration runs all 201).
 TEST(Calibration, RecoversDorfResponses) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
   const auto rows = eval::LoadDorfInverseCurves(file);
   ASSERT_EQ(rows.size(), 201u);
-  for (int k : {0, 57, 123, 190}) {
-    const std::string name = "dorf " + std::to_string(k) + "/" + std::to_string(k + 3) + "/" + std::to_string(k + 7);
-    CheckMethods(DorfTriplet(rows, k, k + 3, k + 7), name.c_str(), true);
+  for (std::array<int, 3> k : {std::array{0, 3, 7}, std::array{57, 60, 64}, std::array{123, 126, 130},
+                               std::array{190, 193, 197}, std::array{165, 171, 159}}) {
+    const std::string name = "dorf " + std::to_string(k[0]) + "/" + std::to_string(k[1]) + "/" + std::to_string(k[2]);
+    CheckMethods(DorfTriplet(rows, k[0], k[1], k[2]), name.c_str(), true, k[1] == 171 ? 0.015 : 0.01);
   }
 }
 
