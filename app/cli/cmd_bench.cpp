@@ -26,8 +26,9 @@ Command AddBenchCommand(CLI::App& app) {
     std::string size = "320x240", work = "build/bench-data";
     std::vector<std::string> ae = {"flicker", "smooth"};
     bool no_peers = false;
-    std::string data = "../shared/data";
+    std::string data = "../shared/data", scene = "room";
     int sweeps = 0;
+    double noise_scale = 1.0;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
@@ -51,6 +52,10 @@ Command AddBenchCommand(CLI::App& app) {
   cmd->add_option("--data", a->data, "calibration, paper: folder holding dorf/ and emor/ (SOURCES.md)")->capture_default_str();
   cmd->add_option("--sweeps", a->sweeps, "calibration: at most this many sweeps of 3 curves (default: all 67)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--scene", a->scene, "calibration: scene of the simulated sweeps")
+      ->check(CLI::IsMember({"room", "desk"}))->capture_default_str();
+  cmd->add_option("--noise-scale", a->noise_scale, "calibration: multiplies the simulated sensor noise")
+      ->check(CLI::Range(0.0, 10.0))->capture_default_str();
   cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
   return {cmd, [a, frames_opt] {
     if (a->suite == "radiance")
@@ -65,7 +70,8 @@ Command AddBenchCommand(CLI::App& app) {
       t.peers = !a->no_peers;
       return a->suite == "paper" ? RunPaper(t, a->pairs, a->data) : RunTrackingExperiment(t);
     }
-    if (a->suite == "calibration") return RunCalibrationAccuracy(a->out, a->data, a->sweeps);
+    if (a->suite == "calibration")
+      return RunCalibrationAccuracy({a->out, a->data, a->scene, a->sweeps, a->noise_scale});
     if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
     if (a->suite == "nr-figure") return RunNrFigure(a->out);
     if (a->suite == "engine") {

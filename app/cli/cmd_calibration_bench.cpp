@@ -48,8 +48,14 @@ double Quantile(std::vector<double> v, double q) {
 
 // Fits every method on one sweep and records one row per channel.
 void FitAll(const radiometry::InverseResponse& truth, const std::array<std::string, 3>& names,
-            const radiometry::EmorBasis* basis, std::map<std::string, MethodResults>& out) {
-  const radiometry::Sweep s = eval::SimulateSweep(truth, kNoise);
+            const radiometry::EmorBasis* basis, const CalibrationBenchArgs& a,
+            std::map<std::string, MethodResults>& out) {
+  radiometry::NoiseModel noise = kNoise;
+  for (int c = 0; c < 3; ++c) {
+    noise.sigma_s[std::size_t(c)] *= float(a.noise_scale);
+    noise.sigma_c[std::size_t(c)] *= float(a.noise_scale);
+  }
+  const radiometry::Sweep s = eval::SimulateSweep(truth, noise, 2, 160, 120, a.scene);
   auto record = [&](const std::string& method, auto fit_fn) {
     const auto t0 = std::chrono::steady_clock::now();
     const radiometry::ResponseFit fit = fit_fn();
@@ -101,8 +107,10 @@ std::string SummaryTable(const std::map<std::string, MethodResults>& results, bo
 
 }  // namespace
 
-int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_dir, int triplets) {
-  const fs::path data = data_dir;
+int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
+  const std::string& out_dir = a.out;
+  const int triplets = a.sweeps;
+  const fs::path data = a.data;
   const fs::path dorf_file = data / "dorf/dorf_invI_201x1024.txt";
   if (!fs::exists(dorf_file))
     throw InputError(dorf_file, "file is missing: the calibration suite needs the DoRF curves (--data names "
@@ -125,13 +133,13 @@ int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_d
     const auto truth = eval::InverseFromCurves(
         {&curves[std::size_t(ids[0])], &curves[std::size_t(ids[1])], &curves[std::size_t(ids[2])]});
     FitAll(truth, {"dorf " + std::to_string(ids[0]), "dorf " + std::to_string(ids[1]), "dorf " + std::to_string(ids[2])},
-           basis.get(), results);
+           basis.get(), a, results);
     prog.Step();
   }
   prog.Done();
   radiometry::InverseResponse xtion = *sim::BuiltinXtionProfile().response;
   radiometry::ScaleToUnitAt128(xtion);
-  FitAll(xtion, {"xtion r", "xtion g", "xtion b"}, basis.get(), results);
+  FitAll(xtion, {"xtion r", "xtion g", "xtion b"}, basis.get(), a, results);
   const fs::path boreal_file = data / "camera_response_measured/borealhdr_pcalib_inside1.txt";
   if (fs::exists(boreal_file)) {
     std::vector<double> v;
@@ -140,7 +148,7 @@ int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_d
       for (std::size_t f = 0; f < r.fields.size(); ++f) v.push_back(io::ParseNumber(boreal_file, r, f, "response value"));
     if (v.size() != 256) throw InputError(boreal_file, "has " + std::to_string(v.size()) + " values, expected 256");
     const auto boreal = eval::InverseFromCurves({&v, &v, &v});
-    FitAll(boreal, {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), results);
+    FitAll(boreal, {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), a, results);
   }
 
   json j;
@@ -174,19 +182,20 @@ int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_d
                    std::to_string(total) + " curves; EMoR misses 1 % (band) on " + std::to_string(missed) +
                    ", of which the warning flags " + std::to_string(missed_flagged) + ".\n";
   }
-  char head[1024];
+  char head[1536];
   std::snprintf(head, sizeof head,
                 "# Response recovery on real measured curves (`hdrfusion bench --suite calibration`)\n\n"
-                "Each measured inverse response drives one channel of the simulated sensor (160 x 120, "
-                "half-stop sweep 0.25-128 ms, 2 frames per exposure, noise sigma_s 0.025-0.035, sigma_c "
-                "0.015-0.025); every method fits the sweep with its defaults. Errors over levels 5-250 as a "
+                "Each measured inverse response drives one channel of the simulated sensor (scene %s, "
+                "160 x 120, half-stop sweep 0.25-128 ms, 2 frames per exposure, noise sigma_s %.3f-%.3f, "
+                "sigma_c %.3f-%.3f); every method fits the sweep with its defaults. Errors over levels 5-250 as a "
                 "share of the curve's full range after one scale per channel: **point** = |estimate - "
                 "curve| at the level; **band** = distance of the estimate from the radiances the true "
                 "camera maps to that level (0 when it maps back to the level). %ld of the %ld DoRF curves "
                 "have a level band wider than 2 %% of their range in 5-250 (jumps in the measured curve: "
                 "the camera gives one level over that whole band, so the pointwise figure there is not "
                 "identifiable from images).\n\n## DoRF (%d sweeps, %ld curves)\n\n",
-                wide, dorf_rows, sweeps, dorf_rows);
+                a.scene.c_str(), 0.025 * a.noise_scale, 0.035 * a.noise_scale, 0.015 * a.noise_scale,
+                0.025 * a.noise_scale, wide, dorf_rows, sweeps, dorf_rows);
   std::string md = head + SummaryTable(results, true);
   md += "\n## Measured camera curves (built-in Xtion per channel, BorealHDR)\n\n" + SummaryTable(results, false) + warning_line;
   const fs::path out = out_dir;

@@ -82,7 +82,7 @@ int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data
   const bool have_dorf = fs::exists(fs::path(data_dir) / "dorf/dorf_invI_201x1024.txt");
   if (!have_dorf)
     std::fprintf(stderr, "paper: %s/dorf is missing: no calibration section\n", data_dir.c_str());
-  else if (int rc = RunCalibrationAccuracy(a.out, data_dir, 0))
+  else if (int rc = RunCalibrationAccuracy({a.out, data_dir}))
     return rc;
   const json tracking = io::ReadJsonFile(out / "tracking.json");
   const json radiance = io::ReadJsonFile(out / "radiance.json");

@@ -42,8 +42,13 @@ int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data
 // Radiance accuracy and dynamic range per scene (cmd_radiance_bench.cpp), `bench --suite radiance`.
 int RunRadianceAccuracy(const std::string& out_dir, int frames, const std::string& size);
 // Response recovery on every DoRF curve (cmd_calibration_bench.cpp), `bench --suite
-// calibration`; `triplets` > 0 limits the number of sweeps (3 curves each).
-int RunCalibrationAccuracy(const std::string& out_dir, const std::string& data_dir, int triplets);
+// calibration`: one sweep per 3 curves.
+struct CalibrationBenchArgs {
+  std::string out = "docs/results", data = "../shared/data", scene = "room";
+  int sweeps = 0;            // > 0: at most this many sweeps
+  double noise_scale = 1.0;  // multiplies the sensor noise (sigma_s, sigma_c)
+};
+int RunCalibrationAccuracy(const CalibrationBenchArgs& a);
 // The normalized-radiance figure (cmd_nr_figure.cpp), run by `bench --suite nr-figure`.
 int RunNrFigure(const std::string& out_dir);
 

@@ -67,8 +67,9 @@ ResponseAccuracy CompareResponse(const radiometry::InverseResponse& est,
 
 radiometry::Sweep SimulateSweep(const radiometry::InverseResponse& truth,
                                 const radiometry::NoiseModel& noise, int repeats, int width,
-                                int height) {
+                                int height, const std::string& scene) {
   sim::SimOptions o;
+  o.scene = scene;
   o.width = width;
   o.height = height;
   o.sweep = true;

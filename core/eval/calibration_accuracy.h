@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "radiometry/calibration.h"
@@ -40,10 +41,11 @@ struct ResponseAccuracy {
 ResponseAccuracy CompareResponse(const radiometry::InverseResponse& estimate,
                                  const radiometry::InverseResponse& truth, int lo = 5, int hi = 250);
 
-// A static-camera exposure sweep of the built-in synthetic room through `truth`: half-stop
-// exposures from 0.25 to 128 ms (19), `repeats` frames each.
+// A static-camera exposure sweep of a built-in synthetic scene ("room" or "desk") through
+// `truth`: half-stop exposures from 0.25 to 128 ms (19), `repeats` frames each.
 radiometry::Sweep SimulateSweep(const radiometry::InverseResponse& truth,
                                 const radiometry::NoiseModel& noise, int repeats = 2,
-                                int width = 160, int height = 120);
+                                int width = 160, int height = 120,
+                                const std::string& scene = "room");
 
 }  // namespace hdrf::eval

@@ -33,7 +33,7 @@ struct ClipLevels {
 };
 
 struct DebevecOptions {
-  int samples = 3000;     // pixel locations sampled (stratified by brightness)
+  int samples = 6000;     // pixel locations sampled (stratified by brightness)
   double lambda = 100.0;  // smoothness weight on g'' (g = ln f^-1)
   ClipLevels clip;
 };
