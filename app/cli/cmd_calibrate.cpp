@@ -108,8 +108,9 @@ Command AddCalibrateCommand(CLI::App& app) {
     if (fit.method == "emor") {
       const double gap = std::max({fit.basis_gap[0], fit.basis_gap[1], fit.basis_gap[2]});
       std::printf("  EMoR against the free-form (Debevec) curve of the same sweep: largest difference "
-                  "%.2f %% / %.2f %% / %.2f %% of the range (R/G/B, levels 5-250)\n",
-                  100 * fit.basis_gap[0], 100 * fit.basis_gap[1], 100 * fit.basis_gap[2]);
+                  "%.2f %% / %.2f %% / %.2f %% of the range at levels %d / %d / %d (R/G/B, levels 5-250)\n",
+                  100 * fit.basis_gap[0], 100 * fit.basis_gap[1], 100 * fit.basis_gap[2],
+                  fit.basis_gap_level[0], fit.basis_gap_level[1], fit.basis_gap_level[2]);
       if (gap > 0.01)
         std::printf("  warning: this camera's response lies outside what %d EMoR components represent "
                     "(%.1f %% apart); --method debevec follows it more closely\n", a->emor_components,

@@ -24,9 +24,6 @@ using json = nlohmann::json;
 
 namespace {
 
-// The noise of the calibration tests: a typical consumer sensor at its base gain.
-const radiometry::NoiseModel kNoise{{0.030f, 0.025f, 0.035f}, {0.020f, 0.015f, 0.025f}};
-
 struct CurveResult {
   std::string curve;  // "dorf 17", "xtion r", ...
   double point, bin, widest;
@@ -50,7 +47,7 @@ double Quantile(std::vector<double> v, double q) {
 void FitAll(const radiometry::InverseResponse& truth, const std::array<std::string, 3>& names,
             const radiometry::EmorBasis* basis, const CalibrationBenchArgs& a,
             std::map<std::string, MethodResults>& out) {
-  radiometry::NoiseModel noise = kNoise;
+  radiometry::NoiseModel noise = eval::kSweepNoise;
   for (int c = 0; c < 3; ++c) {
     noise.sigma_s[std::size_t(c)] *= float(a.noise_scale);
     noise.sigma_c[std::size_t(c)] *= float(a.noise_scale);
@@ -142,13 +139,7 @@ int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
   FitAll(xtion, {"xtion r", "xtion g", "xtion b"}, basis.get(), a, results);
   const fs::path boreal_file = data / "camera_response_measured/borealhdr_pcalib_inside1.txt";
   if (fs::exists(boreal_file)) {
-    std::vector<double> v;
-    const auto rows = io::ReadTextTable(boreal_file);
-    for (const auto& r : rows)
-      for (std::size_t f = 0; f < r.fields.size(); ++f) v.push_back(io::ParseNumber(boreal_file, r, f, "response value"));
-    if (v.size() != 256) throw InputError(boreal_file, "has " + std::to_string(v.size()) + " values, expected 256");
-    const auto boreal = eval::InverseFromCurves({&v, &v, &v});
-    FitAll(boreal, {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), a, results);
+    FitAll(eval::LoadPcalibResponse(boreal_file), {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), a, results);
   }
 
   json j;

@@ -22,6 +22,15 @@ std::vector<std::vector<double>> LoadDorfInverseCurves(const std::filesystem::pa
   return rows;
 }
 
+radiometry::InverseResponse LoadPcalibResponse(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) throw InputError(file, "file is missing");
+  std::vector<double> v;
+  for (const io::TextRow& r : io::ReadTextTable(file))
+    for (std::size_t f = 0; f < r.fields.size(); ++f) v.push_back(io::ParseNumber(file, r, f, "response value"));
+  if (v.size() != 256) throw InputError(file, "has " + std::to_string(v.size()) + " values, expected 256");
+  return InverseFromCurves({&v, &v, &v});
+}
+
 radiometry::InverseResponse InverseFromCurves(const std::array<const std::vector<double>*, 3>& curves) {
   radiometry::InverseResponse r;
   for (int c = 0; c < 3; ++c) {
@@ -44,12 +53,7 @@ ResponseAccuracy CompareResponse(const radiometry::InverseResponse& est,
   for (int c = 0; c < 3; ++c) {
     const auto& t = truth.table[c];
     const auto& e = est.table[c];
-    double num = 0, den = 0;
-    for (int i = lo; i <= hi; ++i) {
-      num += double(e[i]) * t[i];
-      den += double(e[i]) * e[i];
-    }
-    const double s = den > 0 ? num / den : 0;
+    const double s = radiometry::ScaleOnto(est, truth, c, lo, hi);
     const double range = t[255] - t[0];
     for (int i = lo; i <= hi; ++i) {
       const double v = s * e[i];

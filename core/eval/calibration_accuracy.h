@@ -18,8 +18,17 @@ namespace hdrf::eval {
 // naming the file and line for a missing file, a short row or a non-finite value.
 std::vector<std::vector<double>> LoadDorfInverseCurves(const std::filesystem::path& file);
 
-// A 256-level inverse response from 1024-sample curves (one per channel), linearly
-// interpolated at B = i / 255, scaled so that f^-1(128) = 1. A ramp of 1e-4 of the range
+// A TUM-monoVO / DSO pcalib.txt (256 numbers, the inverse response of an 8-bit camera), as
+// the same curve in all three channels scaled so that f^-1(128) = 1. Throws InputError naming
+// the file for a missing file, a value that is not a number, or a count other than 256.
+radiometry::InverseResponse LoadPcalibResponse(const std::filesystem::path& file);
+
+// The sensor noise of the calibration tests and `bench --suite calibration`: a consumer
+// sensor at base gain, in units of f^-1(128) = 1.
+inline const radiometry::NoiseModel kSweepNoise{{0.030f, 0.025f, 0.035f}, {0.020f, 0.015f, 0.025f}};
+
+// A 256-level inverse response from sampled curves (one per channel, any length >= 2),
+// linearly interpolated at B = i / 255, scaled so that f^-1(128) = 1. A ramp of 1e-4 of the range
 // keeps flat runs of the measured table strictly increasing.
 radiometry::InverseResponse InverseFromCurves(const std::array<const std::vector<double>*, 3>& curves);
 

@@ -1,6 +1,7 @@
 #include "radiometry/calibration.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -193,6 +194,15 @@ void ScaleToUnitAt128(InverseResponse& r) {
   }
 }
 
+double ScaleOnto(const InverseResponse& est, const InverseResponse& ref, int c, int lo, int hi) {
+  double num = 0, den = 0;
+  for (int i = lo; i <= hi; ++i) {
+    num += double(est.table[c][i]) * ref.table[c][i];
+    den += double(est.table[c][i]) * est.table[c][i];
+  }
+  return den > 0 ? num / den : 1.0;
+}
+
 void EnforceMonotonic(InverseResponse& r) {
   for (int c = 0; c < 3; ++c) {
     // Pool adjacent violators: blocks of (mean, weight).
@@ -312,19 +322,23 @@ ResponseFit FitRobertson(const Sweep& s, const RobertsonOptions& o) {
       double total = 0;
       for (double n : cnt) total += n;
       const double lambda = o.smoothness * total / 256.0;
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(256, 256);
-      Eigen::VectorXd b = Eigen::VectorXd::Zero(256);
+      // A pentadiagonal system: a sparse factorisation, not a dense 256 x 256 one per iteration.
+      std::vector<Eigen::Triplet<double>> entries;
+      Eigen::VectorXd b(256);
       for (int z = 0; z < 256; ++z) {
-        A(z, z) = cnt[std::size_t(z)];
+        entries.emplace_back(z, z, cnt[std::size_t(z)]);
         b(z) = sum[std::size_t(z)];
       }
       for (int z = 1; z < 255; ++z) {
         const int idx[3] = {z - 1, z, z + 1};
         const double coef[3] = {1, -2, 1};
         for (int u = 0; u < 3; ++u)
-          for (int v = 0; v < 3; ++v) A(idx[u], idx[v]) += lambda * coef[u] * coef[v];
+          for (int v = 0; v < 3; ++v) entries.emplace_back(idx[u], idx[v], lambda * coef[u] * coef[v]);
       }
-      const Eigen::VectorXd sol = A.ldlt().solve(b);
+      Eigen::SparseMatrix<double> A(256, 256);
+      A.setFromTriplets(entries.begin(), entries.end());  // duplicates are summed
+      const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+      const Eigen::VectorXd sol = ldlt.solve(b);
       for (int z = 0; z < 256; ++z)
         if (cnt[std::size_t(z)] > 0) gz[std::size_t(z)] = std::max(1e-9, sol(z));
       const double s128 = gz[128];
@@ -419,12 +433,8 @@ ResponseFit FitEmor(const Sweep& s, const EmorBasis& basis, const EmorOptions& o
   for (int c = 0; c < 3; ++c) {
     const auto& e = fit.inverse.table[c];
     const auto& d = start.inverse.table[c];
-    double num = 0, den = 0;
-    for (int z = 5; z <= 250; ++z) {
-      num += double(e[z]) * d[z];
-      den += double(e[z]) * e[z];
-    }
-    const double scale = den > 0 ? num / den : 1, range = std::max(1e-12, double(d[255] - d[0]));
+    const double scale = ScaleOnto(fit.inverse, start.inverse, c, 5, 250);
+    const double range = std::max(1e-12, double(d[255] - d[0]));
     for (int z = 5; z <= 250; ++z) {
       const double gap = std::abs(scale * e[z] - d[z]) / range;
       if (gap > fit.basis_gap[c]) fit.basis_gap[c] = gap, fit.basis_gap_level[c] = z;

@@ -82,6 +82,11 @@ ResponseFit FitEmor(const Sweep& sweep, const EmorBasis& basis, const EmorOption
 // The documented scale: divides each channel by its value at level 128 (left alone where 0).
 void ScaleToUnitAt128(InverseResponse& inverse);
 
+// The factor s that brings channel c of `estimate` closest to `reference` over levels lo..hi
+// (least squares on s f^-1_est - f^-1_ref); 1 when the estimate is all zero there.
+double ScaleOnto(const InverseResponse& estimate, const InverseResponse& reference, int c, int lo,
+                 int hi);
+
 // Makes each channel non-decreasing by least-squares isotonic regression (pool adjacent
 // violators), then rescales so that f^-1(128) = 1.
 void EnforceMonotonic(InverseResponse& inverse);

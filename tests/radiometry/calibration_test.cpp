@@ -5,8 +5,6 @@
 
 #include <array>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "common/error.h"
 #include "eval/calibration_accuracy.h"
@@ -21,7 +19,7 @@ namespace {
 
 using eval::SimulateSweep;
 
-const NoiseModel kTestNoise{{0.030f, 0.025f, 0.035f}, {0.020f, 0.015f, 0.025f}};
+const NoiseModel& kTestNoise = eval::kSweepNoise;
 
 InverseResponse Normalised(InverseResponse r) {
   ScaleToUnitAt128(r);
@@ -87,19 +85,12 @@ TEST(Calibration, RecoversDorfResponses) {
 TEST(Calibration, RecoversBorealHdrMeasuredResponse) {
   const auto file = test::SharedData("camera_response_measured/borealhdr_pcalib_inside1.txt");
   HDRF_SKIP_WITHOUT(file, "camera_response_measured/borealhdr_pcalib_inside1.txt");
-  std::ifstream in(file);
-  InverseResponse r;
-  for (int i = 0; i < 256; ++i) {
-    double v;
-    ASSERT_TRUE(in >> v);
-    for (int c = 0; c < 3; ++c) r.table[c][i] = float(v);
-  }
-  CheckMethods(Normalised(r), "borealhdr", false);
+  const InverseResponse truth = eval::LoadPcalibResponse(file);
+  CheckMethods(truth, "borealhdr", false);
   // A machine-vision response outside the EMoR basis: the fit misses 1 % and the
   // basis-gap warning of `calibrate` says so.
   const auto basis_file = test::SharedData("emor/invemor.txt");
   if (basis_file.empty()) return;
-  const InverseResponse truth = Normalised(r);
   const ResponseFit em = FitEmor(SimulateSweep(truth, kTestNoise), EmorBasis::Load(basis_file));
   const eval::ResponseAccuracy a = eval::CompareResponse(em.inverse, truth);
   const double gap = std::max({em.basis_gap[0], em.basis_gap[1], em.basis_gap[2]});
@@ -141,6 +132,9 @@ TEST(Calibration, DorfFileErrorsNamed) {
   test::WriteText(dir / "bad.txt", bad + "\n");
   test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "bad.txt"); }, {"bad.txt", "'x'"});
   test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "none.txt"); }, {"none.txt", "missing"});
+  test::WriteText(dir / "pcalib.txt", "0 1 2\n");
+  test::ExpectErrorContaining([&] { eval::LoadPcalibResponse(dir / "pcalib.txt"); },
+                              {"pcalib.txt", "3 values, expected 256"});
 }
 
 TEST(Calibration, NoiseLevelFunctionWithinTenPercent) {
