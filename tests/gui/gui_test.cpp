@@ -124,6 +124,11 @@ TEST(ExposurePlot, KeepsTheLastFramesOfBothSeries) {
   EXPECT_GT(probe.DistinctLevels(), 3);  // the curves were drawn
 }
 
+// True once `spy` holds a signal: one the worker (on its own thread) emitted before we began
+// waiting counts too. QSignalSpy::wait alone waits for a further emission, so a fast export
+// finishing first made the test time out under load.
+bool Arrived(QSignalSpy& spy, int timeout_ms) { return !spy.isEmpty() || spy.wait(timeout_ms); }
+
 // Runs the worker on its own thread, as the studio does.
 class WorkerOnThread {
  public:
@@ -159,7 +164,7 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   s.mesh_min_interval_ms = 0;
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
-  ASSERT_TRUE(finished.wait(120000));
+  ASSERT_TRUE(Arrived(finished, 120000));
   QCoreApplication::processEvents();
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
@@ -206,7 +211,7 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   s.pipeline.volume.resolution = 128;
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
-  ASSERT_TRUE(failed.wait(60000));
+  ASSERT_TRUE(Arrived(failed, 60000));
   QCoreApplication::processEvents();
   const QString msg = failed.takeFirst().at(0).toString();
   EXPECT_TRUE(msg.contains(QString::fromStdString(rgb[5].filename().string()))) << msg.toStdString();
@@ -216,7 +221,7 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   QSignalSpy done(wt.w, &ScanWorker::exportDone);
   const QString ply = dir.filePath("model.ply");
   wt.Call([&wt, ply] { wt.w->ExportMesh(ply); });
-  ASSERT_TRUE(done.wait(60000));
+  ASSERT_TRUE(Arrived(done, 60000));
   EXPECT_TRUE(done.takeFirst().at(0).toBool());
   const mesh::Mesh m = io::ReadPly(ply.toStdString());
   EXPECT_GT(m.triangles.size(), 1000u);
@@ -225,7 +230,7 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
                                  Qt::DirectConnection);
   const QString ply2 = dir.filePath("cancelled.ply");
   wt.Call([&wt, ply2] { wt.w->ExportMesh(ply2); });
-  ASSERT_TRUE(done.wait(60000));
+  ASSERT_TRUE(Arrived(done, 60000));
   const QList<QVariant> c = done.takeFirst();
   EXPECT_FALSE(c.at(0).toBool());
   EXPECT_TRUE(c.at(1).toString().contains("cancelled")) << c.at(1).toString().toStdString();
@@ -233,10 +238,10 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   QObject::disconnect(cancel);
   // A trajectory and an OpenEXR render too.
   wt.Call([&wt, &dir] { wt.w->ExportTrajectory(dir.filePath("t.txt")); });
-  ASSERT_TRUE(done.wait(10000));
+  ASSERT_TRUE(Arrived(done, 10000));
   EXPECT_TRUE(done.takeFirst().at(0).toBool());
   wt.Call([&wt, &dir] { wt.w->ExportRender(dir.filePath("r.exr")); });
-  ASSERT_TRUE(done.wait(10000));
+  ASSERT_TRUE(Arrived(done, 10000));
   EXPECT_TRUE(done.takeFirst().at(0).toBool());
   EXPECT_EQ(io::ReadExr(dir.filePath("r.exr").toStdString()).width(), 160);
 }
@@ -247,7 +252,7 @@ TEST(ScanWorker, AMissingSourceIsReportedNotFatal) {
   ScanSettings s;
   s.source = "/nonexistent/sequence";
   wt.Call([&wt, s] { wt.w->Configure(s); });
-  ASSERT_TRUE(failed.wait(10000));
+  ASSERT_TRUE(Arrived(failed, 10000));
   EXPECT_TRUE(failed.takeFirst().at(0).toString().contains("/nonexistent/sequence"));
 }
 
