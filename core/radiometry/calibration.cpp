@@ -7,6 +7,8 @@
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <tuple>
 #include <random>
 #include <sstream>
 
@@ -443,6 +445,174 @@ ResponseFit FitEmor(const Sweep& s, const EmorBasis& basis, const EmorOptions& o
   return fit;
 }
 
+namespace {
+
+// Samples of one channel binned by their radiance R = L t (L from the other exposures), with
+// the count of levels below each threshold and the variance the merge's error adds to R.
+struct ThresholdData {
+  static constexpr int kBins = 4096;                 // log-spaced over 5.5 decades
+  std::vector<double> n, sum_r, sum_err;             // per bin
+  std::vector<std::array<int, kLevels + 1>> below;   // per bin: samples with level < k
+  explicit ThresholdData() : n(kBins, 0), sum_r(kBins, 0), sum_err(kBins, 0), below(kBins) {
+    for (auto& b : below) b.fill(0);
+  }
+};
+
+ThresholdData BinByMergedRadiance(const Sweep& s, const Groups& g, const std::array<float, kLevels>& t,
+                                  int c, float sigma_s, float sigma_c) {
+  // Per level: noise variance of R under the current model and the quantisation step q;
+  // a merge weight w = t^2 / (noise + q^2 / 12). Quantisation errors are taken as shared by
+  // the frames of one exposure (a pixel that lands in a wide band lands there every time).
+  std::array<double, kLevels> noise{}, quant{}, step{};
+  for (int z = 0; z < kLevels; ++z) {
+    const int zl = std::max(0, z - 1), zh = std::min(kLevels - 1, z + 1);
+    step[std::size_t(z)] = (t[std::size_t(zh)] - t[std::size_t(zl)]) / double(zh - zl);
+    quant[std::size_t(z)] = step[std::size_t(z)] * step[std::size_t(z)] / 12.0;
+    noise[std::size_t(z)] = t[std::size_t(z)] * sigma_s * sigma_s + double(sigma_c) * sigma_c;
+  }
+  constexpr int kMergeLo = 16, kMergeHi = 240;  // the fitted response is surest here
+  struct Sums {
+    double a = 0, b = 0, noise = 0, quant = 0;  // sum w x, sum w, sum w^2 var, (sum w q)^2 / 12
+  };
+  const std::size_t npx = s.images[0].size();
+  auto group_sums = [&](std::size_t e, std::size_t p) {
+    Sums out;
+    const double te = g.exposure[e];
+    double wq = 0;
+    for (int i : g.images[e]) {
+      const int z = Level(s.images[std::size_t(i)][p], c);
+      if (z < kMergeLo || z > kMergeHi) continue;
+      const double w = te * te / (noise[std::size_t(z)] + quant[std::size_t(z)]);
+      out.a += w * t[std::size_t(z)] / te;
+      out.b += w;
+      out.noise += w * w * noise[std::size_t(z)] / (te * te);
+      wq += w * step[std::size_t(z)] / te;
+    }
+    out.quant = wq * wq / 12.0;
+    return out;
+  };
+  std::vector<Sums> total(npx);
+  for (std::size_t e = 0; e < g.exposure.size(); ++e)
+    for (std::size_t p = 0; p < npx; ++p) {
+      const Sums x = group_sums(e, p);
+      total[p].a += x.a, total[p].b += x.b, total[p].noise += x.noise, total[p].quant += x.quant;
+    }
+  ThresholdData d;
+  const double log_ref = std::log10(std::max(1e-30, double(t[128])));
+  for (std::size_t e = 0; e < g.exposure.size(); ++e) {
+    const double te = g.exposure[e];
+    for (std::size_t p = 0; p < npx; ++p) {
+      const Sums own = group_sums(e, p);
+      const double b = total[p].b - own.b;
+      if (!(b > 1e-9 * total[p].b) || !(b > 0)) continue;  // seen in no other exposure
+      const double R = (total[p].a - own.a) / b * te;
+      if (!(R > 0)) continue;
+      const double err = (total[p].noise - own.noise + total[p].quant - own.quant) / (b * b) * te * te;
+      const int bin = int((std::log10(R) - log_ref + 4.0) / 5.5 * ThresholdData::kBins);
+      if (bin < 0 || bin >= ThresholdData::kBins) continue;
+      const auto k = std::size_t(bin);
+      for (int i : g.images[e]) {
+        d.n[k] += 1;
+        d.sum_r[k] += R;
+        d.sum_err[k] += err;
+        d.below[k][Level(s.images[std::size_t(i)][p], c) + 1u] += 1;
+      }
+    }
+  }
+  for (auto& b : d.below)
+    for (int z = 1; z <= kLevels; ++z) b[std::size_t(z)] += b[std::size_t(z - 1)];
+  return d;
+}
+
+double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+double NormalPdf(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * 3.14159265358979323846); }
+
+struct Threshold {
+  double tau, variance, variance_of_variance, count;
+};
+
+// Maximum-likelihood probit fit of P(level < k | R) = Phi(a - b R), i.e. tau = a / b and
+// sigma = 1 / b, by Newton steps (the log-likelihood is concave in a, b). Empty where the
+// data do not pin the threshold down.
+std::optional<Threshold> FitThreshold(const ThresholdData& d, int k) {
+  // Start from where the share below k crosses 84 %, 50 % and 16 % (runs of 8 bins).
+  double r84 = -1, r50 = -1, r16 = -1;
+  for (int b = 0; b + 8 <= ThresholdData::kBins && r16 < 0; ++b) {
+    double nb = 0, nn = 0, rr = 0;
+    for (int j = b; j < b + 8; ++j) {
+      nb += d.below[std::size_t(j)][std::size_t(k)];
+      nn += d.n[std::size_t(j)];
+      rr += d.sum_r[std::size_t(j)];
+    }
+    if (nn < 20) continue;
+    const double share = nb / nn, R = rr / nn;
+    if (r84 < 0 && share < 0.84) r84 = R;
+    if (r50 < 0 && share < 0.5) r50 = R;
+    if (r16 < 0 && share < 0.16) r16 = R;
+  }
+  if (r84 < 0 || r50 < 0 || r16 < 0) return std::nullopt;
+  const double sigma0 = std::max(1e-9 * r50, 0.5 * (r16 - r84));
+  double a = r50 / sigma0, b = 1 / sigma0;
+  double h00 = 0, h01 = 0, h11 = 0;
+  bool converged = false;
+  for (int it = 0; it < 40 && !converged; ++it) {
+    const double tau = a / b, sigma = 1 / b;
+    double g0 = 0, g1 = 0;
+    h00 = h01 = h11 = 0;
+    for (int bin = 0; bin < ThresholdData::kBins; ++bin) {
+      const double n = d.n[std::size_t(bin)];
+      if (n == 0) continue;
+      const double R = d.sum_r[std::size_t(bin)] / n;
+      if (std::abs(R - tau) > 6 * sigma) continue;
+      const double y = d.below[std::size_t(bin)][std::size_t(k)];
+      const double eta = a - b * R;
+      const double P = std::clamp(NormalCdf(eta), 1e-12, 1 - 1e-12), f = NormalPdf(eta);
+      const double score = y * f / P - (n - y) * f / (1 - P);
+      const double info = n * f * f / (P * (1 - P));  // Fisher information in eta
+      g0 += score, g1 -= R * score;
+      h00 += info, h01 -= R * info, h11 += R * R * info;
+    }
+    const double det = h00 * h11 - h01 * h01;
+    if (!(det > 0)) return std::nullopt;
+    const double da = (h11 * g0 - h01 * g1) / det, db = (h00 * g1 - h01 * g0) / det;
+    a += da, b += db;
+    if (!(b > 0)) return std::nullopt;
+    converged = std::abs(db) < 1e-7 * b && std::abs(da) < 1e-7 * (std::abs(a) + 1);
+  }
+  if (!converged) return std::nullopt;
+  const double det = h00 * h11 - h01 * h01;
+  const double var_b = h00 / det;
+  const double tau = a / b, sigma = 1 / b;
+  // Samples within one sigma: their count, and the variance the merge's error adds to R.
+  double count = 0, err = 0;
+  for (int bin = 0; bin < ThresholdData::kBins; ++bin) {
+    const double n = d.n[std::size_t(bin)];
+    if (n > 0 && std::abs(d.sum_r[std::size_t(bin)] / n - tau) < sigma)
+      count += n, err += d.sum_err[std::size_t(bin)];
+  }
+  if (count < 50) return std::nullopt;
+  const double variance = sigma * sigma - err / count;
+  if (!(variance > 0)) return std::nullopt;
+  return Threshold{tau, variance, std::pow(2 / (b * b * b), 2) * var_b, count};
+}
+
+// Weighted least squares of variance = slope R + offset; offset 0 where the data put it
+// below zero. Returns {slope, offset}.
+std::pair<double, double> FitVarianceLine(const std::vector<Threshold>& th, const std::vector<bool>& use) {
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < th.size(); ++i) {
+    if (!use[i]) continue;
+    const double w = 1 / th[i].variance_of_variance, x = th[i].tau, y = th[i].variance;
+    sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+  }
+  double slope = (sw * sxy - sx * sy) / (sw * sxx - sx * sx);
+  double offset = (sy - slope * sx) / sw;
+  if (!(offset >= 0)) offset = 0, slope = sxy / sxx;
+  return {std::max(0.0, slope), offset};
+}
+
+}  // namespace
+
 NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
   const Groups g = GroupByExposure(s);
   bool repeats = false;
@@ -450,78 +620,44 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
   if (!repeats)
     throw Error(s.source + ": the noise level function needs at least 3 frames per exposure "
                            "(repeated frames); this sweep has one or two");
+  if (g.exposure.size() < 2)
+    throw Error(s.source + ": the noise level function needs at least two distinct exposures");
   NoiseFit out;
-  const std::size_t npx = s.images[0].size();
   for (int c = 0; c < 3; ++c) {
-    constexpr int kBins = 48;
-    std::vector<double> bz(kBins, 0), br(kBins, 0), bv(kBins, 0), bq(kBins, 0), bn(kBins, 0);
-    const auto& t = inv.table[c];
-    for (const auto& grp : g.images) {
-      if (grp.size() < 3) continue;
-      const double n = double(grp.size());
-      for (std::size_t p = 0; p < npx; ++p) {
-        double sum = 0, sum2 = 0, zs = 0;
-        bool clipped = false;
-        for (int i : grp) {
-          const int z = Level(s.images[std::size_t(i)][p], c);
-          clipped |= Clipped(z, clip);
-          sum += t[std::size_t(z)];
-          sum2 += double(t[std::size_t(z)]) * t[std::size_t(z)];
-          zs += z;
-        }
-        // Pixels whose mean is near a clipping level have their noise truncated: leave them
-        // out by their mean (not by their samples, which would bias the variance).
-        const double zmean = zs / n;
-        if (zmean < clip.lo + 12 || zmean > clip.hi - 12) continue;
-        if (clipped) continue;
-        const double m = sum / n;
-        const double var = std::max(0.0, (sum2 - n * m * m) / (n - 1));
-        const int k = std::clamp(int(std::lround(zs / n)), 1, 254);
-        const double step = 0.5 * (t[std::size_t(k + 1)] - t[std::size_t(k - 1)]);
-        if (m <= 0) continue;
-        // No selection on the sample variance itself (that would bias upwards): bins where
-        // quantisation dominates are dropped below, on their averages.
-        const int b = std::clamp(int((std::log10(m / t[128]) + 2.5) / 4.0 * kBins), 0, kBins - 1);
-        bz[std::size_t(b)] += zs / n;
-        br[std::size_t(b)] += m;
-        bv[std::size_t(b)] += var;
-        bq[std::size_t(b)] += step * step / 12.0;
-        bn[std::size_t(b)] += 1;
-      }
+    const auto& t = inv.table[std::size_t(c)];
+    // The merge weights need a noise model: a generic one first, then the fitted one.
+    float sigma_s = 0.02f * std::sqrt(std::max(1e-12f, t[128])), sigma_c = 0.01f * t[128];
+    std::vector<Threshold> th;
+    std::vector<int> th_level;
+    std::vector<bool> use;
+    double slope = 0, offset = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      const ThresholdData d = BinByMergedRadiance(s, g, t, c, sigma_s, sigma_c);
+      th.clear(), th_level.clear();
+      for (int k = clip.lo + 1; k <= clip.hi; ++k)
+        if (const auto x = FitThreshold(d, k)) th.push_back(*x), th_level.push_back(k);
+      if (th.size() < 3)
+        throw Error(s.source + ": too few level thresholds crossed by unclipped, repeated pixels to "
+                               "fit the noise of channel " + std::to_string(c) + " (" +
+                    std::to_string(th.size()) + ")");
+      // Fit, then once more without thresholds more than 4 standard errors off the line.
+      use.assign(th.size(), true);
+      std::tie(slope, offset) = FitVarianceLine(th, use);
+      for (std::size_t i = 0; i < th.size(); ++i)
+        use[i] = std::abs(th[i].variance - (slope * th[i].tau + offset)) <
+                 4 * std::sqrt(th[i].variance_of_variance);
+      if (std::count(use.begin(), use.end(), true) >= 3) std::tie(slope, offset) = FitVarianceLine(th, use);
+      sigma_s = float(std::sqrt(slope)), sigma_c = float(std::sqrt(offset));
     }
-    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int b = 0; b < kBins; ++b) {
-      if (bn[std::size_t(b)] < 20) continue;
-      const double q = bq[std::size_t(b)] / bn[std::size_t(b)];
-      const double raw = bv[std::size_t(b)] / bn[std::size_t(b)];
-      if (q > 0.25 * raw) continue;  // quantisation dominates: little information
-      const double x = br[std::size_t(b)] / bn[std::size_t(b)], y = raw - q;
-      out.levels[std::size_t(c)].push_back({bz[std::size_t(b)] / bn[std::size_t(b)], x, y, int(bn[std::size_t(b)])});
-      if (y <= 0) continue;
-      const double w = bn[std::size_t(b)] / (y * y);
-      sw += w;
-      sx += w * x;
-      sy += w * y;
-      sxx += w * x * x;
-      sxy += w * x * y;
-    }
-    if (out.levels[std::size_t(c)].size() < 3)
-      throw Error(s.source + ": too few unclipped, repeated pixels to fit the noise of channel " +
-                  std::to_string(c));
-    double a = (sw * sxy - sx * sy) / (sw * sxx - sx * sx);
-    double b0 = (sy - a * sx) / sw;
-    if (b0 < 0) {  // constant term not supported by the data: fit through the origin
-      b0 = 0;
-      a = sxy / sxx;
-    }
-    out.noise.sigma_s[std::size_t(c)] = float(std::sqrt(std::max(0.0, a)));
-    out.noise.sigma_c[std::size_t(c)] = float(std::sqrt(b0));
+    out.noise.sigma_s[std::size_t(c)] = sigma_s;
+    out.noise.sigma_c[std::size_t(c)] = sigma_c;
     double r2 = 0;
-    for (const auto& l : out.levels[std::size_t(c)]) {
-      const double pred = a * l.radiance + b0;
-      r2 += std::pow((l.variance - pred) / pred, 2);
+    for (std::size_t i = 0; i < th.size(); ++i) {
+      out.levels[std::size_t(c)].push_back({th_level[i] - 0.5, th[i].tau, th[i].variance, int(th[i].count)});
+      const double pred = std::max(1e-30, slope * th[i].tau + offset);
+      r2 += std::pow((th[i].variance - pred) / pred, 2);
     }
-    out.rms_relative_residual[std::size_t(c)] = std::sqrt(r2 / double(out.levels[std::size_t(c)].size()));
+    out.rms_relative_residual[std::size_t(c)] = std::sqrt(r2 / double(th.size()));
   }
   return out;
 }

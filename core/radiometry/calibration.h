@@ -91,19 +91,28 @@ double ScaleOnto(const InverseResponse& estimate, const InverseResponse& referen
 // violators), then rescales so that f^-1(128) = 1.
 void EnforceMonotonic(InverseResponse& inverse);
 
-// Noise level function: for every (exposure, pixel, channel) with repeated frames, the mean
-// and variance of f^-1(I); then a weighted fit of Var = R sigma_s^2 + sigma_c^2, with the
-// variance added by 8-bit quantisation removed and clipped samples left out.
+// Noise level function, Var R = R sigma_s^2 + sigma_c^2, measured where the sensor itself
+// draws the line between two levels. Each pixel's radiance L comes from the other exposures
+// of the sweep (inverse-variance weighted merge of levels 16..240, leaving its own exposure
+// out so that a sample's noise does not move its own R = L t). For every threshold k between
+// levels k-1 and k, the share of samples below k as a function of R is a probit curve,
+// Phi((tau_k - R) / sigma(tau_k)): a maximum-likelihood fit gives the threshold's radiance
+// tau_k and the noise there, with no slope of f^-1 involved (the slope of a fitted response
+// is least certain exactly where the constant noise term shows, in the dark levels) and no
+// correction for quantisation needed. The spread that the merge's own error adds to R is
+// subtracted, then sigma_k^2 = tau_k sigma_s^2 + sigma_c^2 is fitted, weighted by each
+// threshold's precision. Clipped samples count as below or above (never truncated), so
+// clipping needs no special case. Needs >= 3 frames for some exposure.
 struct NoiseLevel {
-  double level;     // mean 8-bit level of the bin
-  double radiance;  // mean R of the bin
-  double variance;  // mean variance of R (quantisation removed)
-  int count;
+  double level;     // the threshold, between levels level - 0.5 and level + 0.5
+  double radiance;  // tau: the R at which the sensor is equally likely to give either level
+  double variance;  // sigma^2 of R there (the merge's own error removed)
+  int count;        // samples within one sigma of tau
 };
 struct NoiseFit {
   NoiseModel noise;
-  std::array<std::vector<NoiseLevel>, 3> levels;  // per channel, by brightness
-  std::array<double, 3> rms_relative_residual{};  // of the fit against the bins
+  std::array<std::vector<NoiseLevel>, 3> levels;  // per channel, ascending thresholds
+  std::array<double, 3> rms_relative_residual{};  // of the fit against the thresholds
 };
 NoiseFit FitNoise(const Sweep& sweep, const InverseResponse& inverse, ClipLevels clip = {});
 
