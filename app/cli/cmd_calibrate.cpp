@@ -131,7 +131,7 @@ Command AddCalibrateCommand(CLI::App& app) {
       have_noise = true;
       std::printf("\nnoise level function (Var R = R sigma_s^2 + sigma_c^2)\n");
       for (int c = 0; c < 3; ++c)
-        std::printf("  %c: sigma_s %.5f  sigma_c %.6f  (%zu brightness bins, rms relative misfit %.2f)\n",
+        std::printf("  %c: sigma_s %.5f  sigma_c %.6f  (%zu level thresholds, rms relative misfit %.2f)\n",
                     ch[c], noise.sigma_s[c], noise.sigma_c[c], nf.levels[c].size(),
                     nf.rms_relative_residual[c]);
       sensor.noise = noise;

@@ -5,6 +5,7 @@
 // response and the BorealHDR measured curve are added when present. Writes calibration.md
 // and calibration.json.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +32,15 @@ struct CurveResult {
   double basis_gap;  // EMoR: its own warning figure (ResponseFit::basis_gap), else 0
 };
 
+// Noise level function (FitNoise with the Debevec response of the same sweep), one per channel:
+// relative errors of sigma_s and sigma_c.
+struct NoiseRow {
+  std::string curve;
+  double sigma_s, sigma_c, true_s, true_c;
+  double ErrS() const { return std::abs(sigma_s / true_s - 1); }
+  double ErrC() const { return std::abs(sigma_c / true_c - 1); }
+};
+
 struct MethodResults {
   std::vector<CurveResult> rows;
   double seconds = 0;
@@ -46,7 +56,7 @@ double Quantile(std::vector<double> v, double q) {
 // Fits every method on one sweep and records one row per channel.
 void FitAll(const radiometry::InverseResponse& truth, const std::array<std::string, 3>& names,
             const radiometry::EmorBasis* basis, const CalibrationBenchArgs& a,
-            std::map<std::string, MethodResults>& out) {
+            std::map<std::string, MethodResults>& out, std::vector<NoiseRow>& noise_rows) {
   radiometry::NoiseModel noise = eval::kSweepNoise;
   for (int c = 0; c < 3; ++c) {
     noise.sigma_s[std::size_t(c)] *= float(a.noise_scale);
@@ -68,6 +78,38 @@ void FitAll(const radiometry::InverseResponse& truth, const std::array<std::stri
   record("debevec", [&] { return radiometry::FitDebevec(s); });
   record("robertson", [&] { return radiometry::FitRobertson(s); });
   if (basis) record("emor", [&] { return radiometry::FitEmor(s, *basis); });
+  // The noise level function needs repeated frames: a second sweep of 6 per exposure,
+  // calibrated as `calibrate` does (Debevec, then FitNoise with that response).
+  const radiometry::Sweep r = eval::SimulateSweep(truth, noise, 6, 160, 120, a.scene);
+  const radiometry::NoiseFit nf = radiometry::FitNoise(r, radiometry::FitDebevec(r).inverse);
+  for (std::size_t c = 0; c < 3; ++c)
+    noise_rows.push_back({names[c], nf.noise.sigma_s[c], nf.noise.sigma_c[c], noise.sigma_s[c], noise.sigma_c[c]});
+}
+
+std::string NoiseTable(const std::vector<NoiseRow>& rows, bool dorf) {
+  std::vector<double> es, ec;
+  const NoiseRow* ws = nullptr;
+  const NoiseRow* wc = nullptr;
+  for (const auto& r : rows) {
+    if ((r.curve.rfind("dorf", 0) == 0) != dorf) continue;
+    es.push_back(r.ErrS());
+    ec.push_back(r.ErrC());
+    if (!ws || r.ErrS() > ws->ErrS()) ws = &r;
+    if (!wc || r.ErrC() > wc->ErrC()) wc = &r;
+  }
+  if (es.empty()) return "";
+  const auto within = [](const std::vector<double>& v) {
+    return long(std::count_if(v.begin(), v.end(), [](double x) { return x < 0.1; }));
+  };
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "| curves | within 10 %%: sigma_s / sigma_c | median error: sigma_s / sigma_c | 95th percentile | "
+                "worst sigma_s (curve) | worst sigma_c (curve) |\n|---|---|---|---|---|---|\n"
+                "| %zu | %ld / %ld | %.1f %% / %.1f %% | %.1f %% / %.1f %% | %.1f %% (%s) | %.1f %% (%s) |\n",
+                es.size(), within(es), within(ec), 100 * Quantile(es, 0.5), 100 * Quantile(ec, 0.5),
+                100 * Quantile(es, 0.95), 100 * Quantile(ec, 0.95), 100 * ws->ErrS(), ws->curve.c_str(),
+                100 * wc->ErrC(), wc->curve.c_str());
+  return line;
 }
 
 std::string SummaryTable(const std::map<std::string, MethodResults>& results, bool dorf) {
@@ -124,22 +166,23 @@ int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
   const int per = (n + 2) / 3;
   const int sweeps = triplets > 0 ? std::min(triplets, per) : per;
   std::map<std::string, MethodResults> results;
+  std::vector<NoiseRow> noise_rows;
   Progress prog("calibration: DoRF sweeps", sweeps);
   for (int k = 0; k < sweeps; ++k) {
     const int ids[3] = {k, std::min(n - 1, k + per), std::min(n - 1, k + 2 * per)};
     const auto truth = eval::InverseFromCurves(
         {&curves[std::size_t(ids[0])], &curves[std::size_t(ids[1])], &curves[std::size_t(ids[2])]});
     FitAll(truth, {"dorf " + std::to_string(ids[0]), "dorf " + std::to_string(ids[1]), "dorf " + std::to_string(ids[2])},
-           basis.get(), a, results);
+           basis.get(), a, results, noise_rows);
     prog.Step();
   }
   prog.Done();
   radiometry::InverseResponse xtion = *sim::BuiltinXtionProfile().response;
   radiometry::ScaleToUnitAt128(xtion);
-  FitAll(xtion, {"xtion r", "xtion g", "xtion b"}, basis.get(), a, results);
+  FitAll(xtion, {"xtion r", "xtion g", "xtion b"}, basis.get(), a, results, noise_rows);
   const fs::path boreal_file = data / "camera_response_measured/borealhdr_pcalib_inside1.txt";
   if (fs::exists(boreal_file)) {
-    FitAll(eval::LoadPcalibResponse(boreal_file), {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), a, results);
+    FitAll(eval::LoadPcalibResponse(boreal_file), {"borealhdr", "borealhdr", "borealhdr"}, basis.get(), a, results, noise_rows);
   }
 
   json j;
@@ -151,6 +194,11 @@ int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
                       {"basis_gap", r.basis_gap}});
     j[method] = {{"seconds_per_sweep", m.seconds / std::max(1, m.fits)}, {"curves", rows}};
   }
+  json noise = json::array();
+  for (const auto& r : noise_rows)
+    noise.push_back({{"curve", r.curve}, {"sigma_s", r.sigma_s}, {"sigma_c", r.sigma_c},
+                     {"true_sigma_s", r.true_s}, {"true_sigma_c", r.true_c}});
+  j["noise"] = noise;
   long wide = 0, dorf_rows = 0;
   for (const auto& r : results.begin()->second.rows)
     if (r.curve.rfind("dorf", 0) == 0) {
@@ -189,6 +237,10 @@ int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
                 0.025 * a.noise_scale, wide, dorf_rows, sweeps, dorf_rows);
   std::string md = head + SummaryTable(results, true);
   md += "\n## Measured camera curves (built-in Xtion per channel, BorealHDR)\n\n" + SummaryTable(results, false) + warning_line;
+  md += "\n## Noise level function\n\nA second sweep per curve with 6 frames per exposure, calibrated as "
+        "`calibrate` does it (Debevec response, then the noise level function with that response); "
+        "relative errors of the fitted sigma_s and sigma_c.\n\nDoRF:\n\n" + NoiseTable(noise_rows, true) +
+        "\nMeasured camera curves:\n\n" + NoiseTable(noise_rows, false);
   const fs::path out = out_dir;
   fs::create_directories(out);
   io::WriteFileAtomically(out / "calibration.md", md);

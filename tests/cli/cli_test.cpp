@@ -333,6 +333,14 @@ TEST(Cli, CalibrationSuiteMeasuresEveryMethodOnDorfCurves) {
     for (const auto& c : j[m]["curves"]) EXPECT_LT(c["band"].get<double>(), 0.01) << m << " " << c["curve"];
   }
   EXPECT_NE(test::ReadText(tmp / "results" / "calibration.md").find("| debevec | 3 |"), std::string::npos);
+  // The noise level function: one row per curve and channel, each within 10 %.
+  ASSERT_TRUE(j.contains("noise"));
+  EXPECT_EQ(j["noise"].size(), j["debevec"]["curves"].size());
+  for (const auto& c : j["noise"]) {
+    EXPECT_NEAR(c["sigma_s"].get<double>(), c["true_sigma_s"].get<double>(), 0.1 * c["true_sigma_s"].get<double>()) << c["curve"];
+    EXPECT_NEAR(c["sigma_c"].get<double>(), c["true_sigma_c"].get<double>(), 0.1 * c["true_sigma_c"].get<double>()) << c["curve"];
+  }
+  EXPECT_NE(test::ReadText(tmp / "results" / "calibration.md").find("## Noise level function"), std::string::npos);
   r = RunCli("bench --suite calibration --sweeps 1 --data " + (tmp / "none").string() + " --out " + out);
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("dorf_invI_201x1024.txt"), std::string::npos) << r.output;
