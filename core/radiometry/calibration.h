@@ -35,6 +35,13 @@ struct ClipLevels {
 struct DebevecOptions {
   int samples = 6000;     // pixel locations sampled (stratified by brightness)
   double lambda = 100.0;  // smoothness weight on g'' (g = ln f^-1)
+  // Passes of the noise-aware refinement on the level thresholds after the method's own
+  // fit (each level set midway between the radiances where the sensor switches to the
+  // levels below and above it, fitted by probit regression; see FitNoise). 0 gives the
+  // classic method. It removes the pull of each level's average towards dense parts of the
+  // scene's radiance histogram: on the 201 DoRF curves Robertson's worst error went from
+  // 1.1 % to 0.8 % of the range (desk scene 1.5 % to 0.4 %), Debevec's from 0.7 % to 0.6 %.
+  int threshold_passes = 2;
   ClipLevels clip;
 };
 struct RobertsonOptions {
@@ -45,10 +52,18 @@ struct RobertsonOptions {
   // curve undetermined up to a wave periodic in log radiance (Grossberg & Nayar); with no
   // penalty it shows as +-1 % ripples on strongly compressive curves.
   double smoothness = 10.0;
+  // Passes of the noise-aware refinement on the level thresholds after the method's own
+  // fit (each level set midway between the radiances where the sensor switches to the
+  // levels below and above it, fitted by probit regression; see FitNoise). 0 gives the
+  // classic method. It removes the pull of each level's average towards dense parts of the
+  // scene's radiance histogram: on the 201 DoRF curves Robertson's worst error went from
+  // 1.1 % to 0.8 % of the range (desk scene 1.5 % to 0.4 %), Debevec's from 0.7 % to 0.6 %.
+  int threshold_passes = 2;
   ClipLevels clip;
 };
 struct EmorOptions {
   int components = 25;  // hinv_1..hinv_K of the basis (invemor.txt has 25)
+  int threshold_passes = 2;  // of the Debevec curve it projects (DebevecOptions)
   ClipLevels clip;
 };
 
@@ -93,7 +108,7 @@ void EnforceMonotonic(InverseResponse& inverse);
 
 // Noise level function, Var R = R sigma_s^2 + sigma_c^2, measured where the sensor itself
 // draws the line between two levels. Each pixel's radiance L comes from the other exposures
-// of the sweep (inverse-variance weighted merge of levels 16..240, leaving its own exposure
+// of the sweep (inverse-variance weighted merge of levels 40..224, leaving its own exposure
 // out so that a sample's noise does not move its own R = L t). For every threshold k between
 // levels k-1 and k, the share of samples below k as a function of R is a probit curve,
 // Phi((tau_k - R) / sigma(tau_k)): a maximum-likelihood fit gives the threshold's radiance
