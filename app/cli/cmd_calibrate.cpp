@@ -67,6 +67,7 @@ Command AddCalibrateCommand(CLI::App& app) {
   struct Args {
     std::string sweep, out, method = "debevec", basis, plots;
     int emor_components = EmorOptions{}.components;
+    int threshold_passes = DebevecOptions{}.threshold_passes;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -78,6 +79,9 @@ Command AddCalibrateCommand(CLI::App& app) {
   cmd->add_option("--emor-basis", a->basis, "invemor.txt of the EMoR distribution (--method emor)");
   cmd->add_option("--emor-components", a->emor_components, "EMoR basis components")
       ->capture_default_str();
+  cmd->add_option("--threshold-passes", a->threshold_passes,
+                  "Noise-aware refinement of the fitted curve on the level thresholds (0: the classic method)")
+      ->check(CLI::Range(0, 10))->capture_default_str();
   cmd->add_option("--plots", a->plots, "Folder for response.png, derivative.png, pcf.png");
   return {cmd, [a] {
     const Sweep sweep = io::ReadSweep(a->sweep);
@@ -89,17 +93,23 @@ Command AddCalibrateCommand(CLI::App& app) {
                 per_exposure.rbegin()->first);
     ResponseFit fit;
     if (a->method == "debevec") {
-      fit = FitDebevec(sweep);
+      DebevecOptions o;
+      o.threshold_passes = a->threshold_passes;
+      fit = FitDebevec(sweep, o);
     } else if (a->method == "robertson") {
-      fit = FitRobertson(sweep);
+      RobertsonOptions o;
+      o.threshold_passes = a->threshold_passes;
+      fit = FitRobertson(sweep, o);
     } else {
       if (a->basis.empty())
         throw SettingError("--emor-basis", "--method emor needs the EMoR basis file invemor.txt");
       EmorOptions o;
       o.components = a->emor_components;
+      o.threshold_passes = a->threshold_passes;
       fit = FitEmor(sweep, EmorBasis::Load(a->basis), o);
     }
-    std::printf("\nresponse (%s), scaled so that f^-1(128) = 1 per channel\n", fit.method.c_str());
+    std::printf("\nresponse (%s%s), scaled so that f^-1(128) = 1 per channel\n", fit.method.c_str(),
+                a->threshold_passes > 0 ? ", refined on the level thresholds" : ", classic");
     const char* ch = "RGB";
     for (int c = 0; c < 3; ++c)
       std::printf("  %c: rms log residual %.4f (%.2f %%), %d sample pixels, f^-1(255)/f^-1(128) = %.2f\n",

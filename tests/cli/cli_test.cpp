@@ -158,6 +158,7 @@ TEST(Cli, CalibrateAndMergeASimulatedSweep) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("noise level function"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("median |deviation|"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("refined on the level thresholds"), std::string::npos) << r.output;
   const SensorInfo s = io::ReadSensorJson(dir / "s.json");
   ASSERT_TRUE(s.response && s.noise);
   EXPECT_FLOAT_EQ(s.response->table[1][128], 1.f);
@@ -168,6 +169,14 @@ TEST(Cli, CalibrateAndMergeASimulatedSweep) {
              (dir / "hdr.exr").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(io::ReadExr(dir / "hdr.exr").width(), 96);
+  // The classic method on request: another curve, said so.
+  r = RunCli("calibrate " + sweep + " --out " + (dir / "c.json").string() + " --threshold-passes 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("debevec, classic"), std::string::npos) << r.output;
+  const SensorInfo classic = io::ReadSensorJson(dir / "c.json");
+  double differ = 0;
+  for (int z = 10; z < 250; ++z) differ = std::max(differ, double(std::abs(classic.response->table[1][z] - s.response->table[1][z])));
+  EXPECT_GT(differ, 1e-4);
   r = RunCli("calibrate " + sweep + " --out " + (dir / "e.json").string() + " --method emor");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--emor-basis"), std::string::npos) << r.output;

@@ -53,7 +53,10 @@ TEST(RealCalibration, MemorialSweepAgainstOpenCvDebevec) {
   std::vector<std::pair<std::string, double>> list;
   const Sweep sweep = ReadSweep(MakeMemorialSweep(src, dir.path(), &list));
   ASSERT_EQ(sweep.images.size(), 16u);
-  const ResponseFit ours = FitDebevec(sweep);
+  // OpenCV implements the classic method: compare like with like (no threshold refinement).
+  DebevecOptions classic;
+  classic.threshold_passes = 0;
+  const ResponseFit ours = FitDebevec(sweep, classic);
 
   std::vector<cv::Mat> images;
   std::vector<float> times;
@@ -70,7 +73,7 @@ TEST(RealCalibration, MemorialSweepAgainstOpenCvDebevec) {
                 cv_response.at<cv::Vec3f>(z)[1], cv_response.at<cv::Vec3f>(z)[0]);
   // Compare shapes after one scale per channel, in log terms, over well-sampled levels.
   double worst = 0, sum = 0;
-  int n = 0;
+  int n = 0, worst_z = 0, worst_c = 0;
   for (int c = 0; c < 3; ++c) {
     const int cv_c = 2 - c;  // OpenCV is BGR
     double mean_log_ratio = 0;
@@ -80,36 +83,45 @@ TEST(RealCalibration, MemorialSweepAgainstOpenCvDebevec) {
     for (int z = 20; z <= 235; ++z) {
       const double d = std::abs(std::log(cv_response.at<cv::Vec3f>(z)[cv_c] / ours.inverse.table[c][z]) -
                                 mean_log_ratio);
-      worst = std::max(worst, d);
+      if (d > worst) worst = d, worst_z = z, worst_c = c;
       sum += d;
       ++n;
     }
   }
   std::printf("memorial: ours vs OpenCV CalibrateDebevec, levels 20-235: mean |log ratio| %.4f, "
-              "worst %.4f (after one scale per channel); our rms log residual %.3f %.3f %.3f\n",
-              sum / n, worst, ours.rms_log_residual[0], ours.rms_log_residual[1],
+              "worst %.4f at level %d of channel %d (after one scale per channel); our rms log residual "
+              "%.3f %.3f %.3f\n", sum / n, worst, worst_z, worst_c, ours.rms_log_residual[0], ours.rms_log_residual[1],
               ours.rms_log_residual[2]);
   // Measured 2026-11-22: mean 0.085, worst 0.82 (OpenCV samples 70 pixels and its curve is not
   // monotonic on this sweep). Asserted with a little room so that a regression fails.
   EXPECT_LT(sum / n, 0.12);
   EXPECT_LT(worst, 1.0);
 
-  // The merged radiance is consistent across exposures.
+  // The merged radiance is consistent across exposures, with the curve `calibrate` writes
+  // (refined on the level thresholds) and with the classic one.
   NoiseModel noise;
   noise.sigma_s = {0.02f, 0.02f, 0.02f};
   noise.sigma_c = {0.002f, 0.002f, 0.002f};
-  const RadianceImage merged = MergeHdr(sweep, ours.inverse, noise);
-  std::vector<double> med;
-  for (const auto& e : MergeConsistency(sweep, ours.inverse, merged)) {
-    std::printf("  %9.4g ms: median |deviation| %.3f stops (%ld samples)\n", e.exposure_ms,
-                e.median_abs_stops, e.samples);
-    if (e.samples > 10000) med.push_back(e.median_abs_stops);
-  }
-  ASSERT_GT(med.size(), 8u);
-  std::sort(med.begin(), med.end());
-  // Measured: 0.15 stops for the typical exposure (film with a strong toe near level 17 makes
-  // dark samples scatter); the synthetic equivalent is 0.02 (tests/radiometry).
-  EXPECT_LT(med[med.size() / 2], 0.2);
+  auto consistency = [&](const ResponseFit& fit) {
+    const RadianceImage merged = MergeHdr(sweep, fit.inverse, noise);
+    std::vector<double> med;
+    for (const auto& e : MergeConsistency(sweep, fit.inverse, merged)) {
+      std::printf("  %9.4g ms: median |deviation| %.3f stops (%ld samples)\n", e.exposure_ms,
+                  e.median_abs_stops, e.samples);
+      if (e.samples > 10000) med.push_back(e.median_abs_stops);
+    }
+    EXPECT_GT(med.size(), 8u);
+    std::sort(med.begin(), med.end());
+    return med.empty() ? 1e9 : med[med.size() / 2];
+  };
+  const double refined = consistency(FitDebevec(sweep)), plain = consistency(ours);
+  std::printf("memorial: merged radiance consistency (median over exposures) %.3f stops refined, %.3f "
+              "classic\n", refined, plain);
+  // Measured: 0.120 refined, 0.147 classic (film with a strong toe near level 17 makes dark
+  // samples scatter); the synthetic equivalent is 0.02 (tests/radiometry).
+  EXPECT_LT(refined, 0.2);
+  EXPECT_LT(plain, 0.2);
+  EXPECT_LT(refined, plain);
 }
 
 }  // namespace
