@@ -110,8 +110,9 @@ void EnforceMonotonic(InverseResponse& inverse);
 
 // Noise level function, Var R = R sigma_s^2 + sigma_c^2, measured where the sensor itself
 // draws the line between two levels. Each pixel's radiance L comes from the other exposures
-// of the sweep (inverse-variance weighted merge of levels 40..224, leaving its own exposure
-// out so that a sample's noise does not move its own R = L t). For every threshold k between
+// of the sweep (an inverse-variance weighted merge of the exposures whose predicted level is
+// 24..236, leaving its own exposure out so that a sample's noise does not move its own
+// R = L t). For every threshold k between
 // levels k-1 and k, the share of samples below k as a function of R is a probit curve,
 // Phi((tau_k - R) / sigma(tau_k)): a maximum-likelihood fit gives the threshold's radiance
 // tau_k and the noise there, with no slope of f^-1 involved (the slope of a fitted response
@@ -121,7 +122,7 @@ void EnforceMonotonic(InverseResponse& inverse);
 // threshold's precision. Clipped samples count as below or above (never truncated), so
 // clipping needs no special case. Needs >= 3 frames for some exposure.
 struct NoiseLevel {
-  double level;     // the threshold, between levels level - 0.5 and level + 0.5
+  double level;     // the threshold k - 0.5, between levels k - 1 and k
   double radiance;  // tau: the R at which the sensor is equally likely to give either level
   double variance;  // sigma^2 of R there (the merge's own error removed)
   int count;        // samples within one sigma of tau
