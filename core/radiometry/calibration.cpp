@@ -282,6 +282,28 @@ std::pair<double, double> FitVarianceLine(const std::vector<Threshold>& th, cons
 }
 
 
+// Every threshold of channel c that the data pin down, with its level k (between levels
+// k - 1 and k), from a merge weighted by the noise model (sigma_s, sigma_c).
+struct ChannelThresholds {
+  std::vector<int> level;
+  std::vector<Threshold> fit;
+};
+ChannelThresholds FitChannelThresholds(const Sweep& s, const Groups& g, const std::array<float, kLevels>& t,
+                                       int c, float sigma_s, float sigma_c, ClipLevels clip) {
+  const ThresholdData d = BinByMergedRadiance(s, g, t, c, sigma_s, sigma_c, clip);
+  ChannelThresholds out;
+  for (int k = clip.lo + 1; k <= clip.hi; ++k)
+    if (const auto x = FitThreshold(d, k)) out.level.push_back(k), out.fit.push_back(*x);
+  return out;
+}
+
+// The noise model the first merge is weighted with, before any is fitted: generic, in the
+// units of the curve (f^-1(128) is one unit of R).
+std::pair<float, float> GenericNoise(const std::array<float, kLevels>& t) {
+  const float ref = std::max(1e-12f, t[128]);
+  return {0.02f * std::sqrt(ref), 0.01f * ref};
+}
+
 // The noise-aware last step of Debevec and Robertson. Both set f^-1(z) to an average of the
 // radiance of the samples seen at level z, which is E[R | z]: where the noise spans several
 // levels it leans towards wherever the scene's radiance histogram is dense (a flat wall at
@@ -291,27 +313,24 @@ std::pair<double, double> FitVarianceLine(const std::vector<Threshold>& th, cons
 // their value. Each pass re-merges L with the refined curve and a noise model fitted to the
 // previous pass's thresholds.
 void RefineOnThresholds(const Sweep& s, const Groups& g, InverseResponse& inv, int passes, ClipLevels clip) {
-  std::array<float, 3> sigma_s{}, sigma_c{};
-  for (int c = 0; c < 3; ++c) {
-    const float ref = std::max(1e-12f, inv.table[std::size_t(c)][128]);
-    sigma_s[std::size_t(c)] = 0.02f * std::sqrt(ref), sigma_c[std::size_t(c)] = 0.01f * ref;
-  }
+  if (passes <= 0) return;
+  EnforceMonotonic(inv);  // the merge needs a monotonic curve with f^-1(128) = 1
+  std::array<std::pair<float, float>, 3> noise;
+  for (int c = 0; c < 3; ++c) noise[std::size_t(c)] = GenericNoise(inv.table[std::size_t(c)]);
   for (int pass = 0; pass < passes; ++pass) {
     for (int c = 0; c < 3; ++c) {
       auto& t = inv.table[std::size_t(c)];
-      const ThresholdData d = BinByMergedRadiance(s, g, t, c, sigma_s[std::size_t(c)], sigma_c[std::size_t(c)], clip);
+      auto& [sigma_s, sigma_c] = noise[std::size_t(c)];
+      const ChannelThresholds th = FitChannelThresholds(s, g, t, c, sigma_s, sigma_c, clip);
       std::array<double, kLevels + 1> tau;
       tau.fill(NAN);
-      std::vector<Threshold> fits;
-      for (int k = clip.lo + 1; k <= clip.hi; ++k)
-        if (const auto x = FitThreshold(d, k)) tau[std::size_t(k)] = x->tau, fits.push_back(*x);
+      for (std::size_t i = 0; i < th.level.size(); ++i) tau[std::size_t(th.level[i])] = th.fit[i].tau;
       for (int z = clip.lo + 1; z < clip.hi; ++z)
         if (std::isfinite(tau[std::size_t(z)]) && std::isfinite(tau[std::size_t(z + 1)]))
           t[std::size_t(z)] = float(0.5 * (tau[std::size_t(z)] + tau[std::size_t(z + 1)]));
-      if (fits.size() >= 3) {
-        const auto [slope, offset] = FitVarianceLine(fits, std::vector<bool>(fits.size(), true));
-        if (slope > 0 || offset > 0)
-          sigma_s[std::size_t(c)] = float(std::sqrt(slope)), sigma_c[std::size_t(c)] = float(std::sqrt(offset));
+      if (th.fit.size() >= 3) {
+        const auto [slope, offset] = FitVarianceLine(th.fit, std::vector<bool>(th.fit.size(), true));
+        if (slope > 0 || offset > 0) sigma_s = float(std::sqrt(slope)), sigma_c = float(std::sqrt(offset));
       }
     }
     EnforceMonotonic(inv);
@@ -500,7 +519,6 @@ ResponseFit FitDebevec(const Sweep& s, const DebevecOptions& o) {
     const Eigen::VectorXd gz = S.ldlt().solve(rhs);
     for (int z = 0; z < 256; ++z) fit.inverse.table[c][z] = float(std::exp(gz(z)));
   }
-  EnforceMonotonic(fit.inverse);
   RefineOnThresholds(s, g, fit.inverse, o.threshold_passes, o.clip);
   return Finish(fit, s, g, o.clip);
 }
@@ -582,7 +600,6 @@ ResponseFit FitRobertson(const Sweep& s, const RobertsonOptions& o) {
     for (int z = last + 1; z < 256; ++z) gz[std::size_t(z)] = gz[std::size_t(z - 1)] * std::exp(slope_hi);
     for (int z = 0; z < 256; ++z) fit.inverse.table[c][z] = float(gz[std::size_t(z)]);
   }
-  EnforceMonotonic(fit.inverse);
   RefineOnThresholds(s, g, fit.inverse, o.threshold_passes, o.clip);
   return Finish(fit, s, g, o.clip);
 }
@@ -686,16 +703,13 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
   for (int c = 0; c < 3; ++c) {
     const auto& t = inv.table[std::size_t(c)];
     // The merge weights need a noise model: a generic one first, then the fitted one.
-    float sigma_s = 0.02f * std::sqrt(std::max(1e-12f, t[128])), sigma_c = 0.01f * t[128];
-    std::vector<Threshold> th;
-    std::vector<int> th_level;
+    auto [sigma_s, sigma_c] = GenericNoise(t);
+    ChannelThresholds fitted;
     std::vector<bool> use;
     double slope = 0, offset = 0;
     for (int pass = 0; pass < 2; ++pass) {
-      const ThresholdData d = BinByMergedRadiance(s, g, t, c, sigma_s, sigma_c, clip);
-      th.clear(), th_level.clear();
-      for (int k = clip.lo + 1; k <= clip.hi; ++k)
-        if (const auto x = FitThreshold(d, k)) th.push_back(*x), th_level.push_back(k);
+      fitted = FitChannelThresholds(s, g, t, c, sigma_s, sigma_c, clip);
+      const std::vector<Threshold>& th = fitted.fit;
       if (th.size() < 3)
         throw Error(s.source + ": too few level thresholds crossed by unclipped, repeated pixels to "
                                "fit the noise of channel " + std::to_string(c) + " (" +
@@ -711,9 +725,10 @@ NoiseFit FitNoise(const Sweep& s, const InverseResponse& inv, ClipLevels clip) {
     }
     out.noise.sigma_s[std::size_t(c)] = sigma_s;
     out.noise.sigma_c[std::size_t(c)] = sigma_c;
+    const std::vector<Threshold>& th = fitted.fit;
     double r2 = 0;
     for (std::size_t i = 0; i < th.size(); ++i) {
-      out.levels[std::size_t(c)].push_back({th_level[i] - 0.5, th[i].tau, th[i].variance, int(th[i].count)});
+      out.levels[std::size_t(c)].push_back({fitted.level[i] - 0.5, th[i].tau, th[i].variance, int(th[i].count)});
       const double pred = std::max(1e-30, slope * th[i].tau + offset);
       r2 += std::pow((th[i].variance - pred) / pred, 2);
     }
