@@ -192,7 +192,7 @@ int RunCalibrationAccuracy(const CalibrationBenchArgs& a) {
       rows.push_back({{"curve", r.curve}, {"point", r.point}, {"band", r.bin}, {"point_level", r.point_level},
                       {"band_level", r.bin_level}, {"widest_band", r.widest},
                       {"basis_gap", r.basis_gap}});
-    j[method] = {{"seconds_per_sweep", m.seconds / std::max(1, m.fits)}, {"curves", rows}};
+    j["methods"][method] = {{"seconds_per_sweep", m.seconds / std::max(1, m.fits)}, {"curves", rows}};
   }
   json noise = json::array();
   for (const auto& r : noise_rows)

@@ -120,8 +120,7 @@ int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data
     const json cal = io::ReadJsonFile(out / "calibration.json");
     md += "\n## Camera response recovery (all 201 DoRF curves, simulated sweeps)\n\n| method | within 1 % of the "
           "range (band) | worst (band) |\n|---|---|---|\n";
-    for (const auto& [method, v] : cal.items()) {
-      if (method == "noise") continue;
+    for (const auto& [method, v] : cal["methods"].items()) {
       long n = 0, ok = 0;
       double worst = 0;
       for (const auto& c : v["curves"])

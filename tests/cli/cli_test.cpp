@@ -336,15 +336,15 @@ TEST(Cli, CalibrationSuiteMeasuresEveryMethodOnDorfCurves) {
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/calibration.json"));
   for (const char* m : {"debevec", "robertson"}) {
-    ASSERT_TRUE(j.contains(m)) << m;
+    ASSERT_TRUE(j["methods"].contains(m)) << m;
     // 3 DoRF curves, the Xtion's 3 channels and, where present, BorealHDR's 3.
-    EXPECT_GE(j[m]["curves"].size(), 6u);
-    for (const auto& c : j[m]["curves"]) EXPECT_LT(c["band"].get<double>(), 0.01) << m << " " << c["curve"];
+    EXPECT_GE(j["methods"][m]["curves"].size(), 6u);
+    for (const auto& c : j["methods"][m]["curves"]) EXPECT_LT(c["band"].get<double>(), 0.01) << m << " " << c["curve"];
   }
   EXPECT_NE(test::ReadText(tmp / "results" / "calibration.md").find("| debevec | 3 |"), std::string::npos);
   // The noise level function: one row per curve and channel, each within 10 %.
   ASSERT_TRUE(j.contains("noise"));
-  EXPECT_EQ(j["noise"].size(), j["debevec"]["curves"].size());
+  EXPECT_EQ(j["noise"].size(), j["methods"]["debevec"]["curves"].size());
   for (const auto& c : j["noise"]) {
     EXPECT_NEAR(c["sigma_s"].get<double>(), c["true_sigma_s"].get<double>(), 0.1 * c["true_sigma_s"].get<double>()) << c["curve"];
     EXPECT_NEAR(c["sigma_c"].get<double>(), c["true_sigma_c"].get<double>(), 0.1 * c["true_sigma_c"].get<double>()) << c["curve"];
