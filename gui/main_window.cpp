@@ -31,8 +31,10 @@
 #include <cstring>
 
 #include "common/cuda_runtime.h"
+#include "common/error.h"
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
+#include "gui/settings_form.h"
 #include "gui/vtk_view.h"
 #include "io/exr.h"
 #include "tonemap/display.h"
@@ -86,8 +88,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   default_state_ = saveState();
   LoadSettings();
   if (!o.source.isEmpty()) source_->setCurrentText(o.source);
-  if (o.device == "cpu") device_->setCurrentIndex(0);
-  if (o.device == "cuda") device_->setCurrentIndex(1);
+  if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
   // The scan thread.
   worker_ = new ScanWorker;
   worker_->moveToThread(&thread_);
@@ -118,7 +119,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   render_timer_ = new QTimer(this);
   connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
   render_timer_->start(33);
-  emit configure(CurrentSettings());
+  ApplyEngineSettings();
   if (o.autostart || !o.screenshot.isEmpty()) QTimer::singleShot(0, this, &MainWindow::StartScan);
 }
 
@@ -198,47 +199,9 @@ void MainWindow::BuildControls() {
   layout->addWidget(src);
   // Engine.
   auto* eng = new QGroupBox(tr("Engine (applies on Reset)"));
-  auto* f = new QFormLayout(eng);
-  tracker_ = new QComboBox;
-  tracker_->addItems({"nr+icp", "nr", "icp", "intensity"});
-  pcf_ = new QSpinBox;
-  pcf_->setRange(0, 3);
-  pcf_->setValue(1);
-  pcf_->setPrefix("p");
-  device_ = new QComboBox;
-  device_->addItems({"cpu", "cuda"});
-  std::string why;
-  if (!CudaAvailable(&why)) {
-    device_->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
-  } else {
-    device_->setCurrentIndex(1);  // the CUDA backend is used when present
-  }
-  voxel_ = new QComboBox;
-  voxel_->addItems({"compact", "no-nr", "full"});
-  res_ = new QSpinBox;
-  res_->setRange(64, 1024);
-  res_->setSingleStep(64);
-  res_->setValue(256);
-  size_ = new QDoubleSpinBox;
-  size_->setRange(0.5, 20);
-  size_->setValue(6);
-  size_->setSuffix(" m");
-  tau0_ = new QDoubleSpinBox;
-  tau0_->setRange(0, 0.99);
-  tau0_->setSingleStep(0.05);
-  tau0_->setValue(0.1);
-  tau1_ = new QDoubleSpinBox;
-  tau1_->setRange(1, 90);
-  tau1_->setValue(75);
-  tau1_->setSuffix(QString::fromUtf8("°"));
-  f->addRow(tr("Tracker"), tracker_);
-  f->addRow(tr("Pixel confidence"), pcf_);
-  f->addRow(tr("Device"), device_);
-  f->addRow(tr("Voxels"), voxel_);
-  f->addRow(tr("Volume resolution"), res_);
-  f->addRow(tr("Volume size"), size_);
-  f->addRow(QString::fromUtf8("τ0 (min PCF)"), tau0_);
-  f->addRow(QString::fromUtf8("τ1 (max view angle)"), tau1_);
+  auto* el = new QVBoxLayout(eng);
+  engine_ = new SettingsForm;
+  el->addWidget(engine_);
   layout->addWidget(eng);
   // Tone mapping.
   auto* tone = new QGroupBox(tr("Tone mapping (OpenColorIO %1 / %2)").arg(tone_->display(), tone_->view()));
@@ -349,21 +312,17 @@ void MainWindow::BuildMenus() {
 ScanSettings MainWindow::CurrentSettings() const {
   ScanSettings s;
   s.source = source_->currentText().toStdString();
-  auto& p = s.pipeline;
-  p.tracker.kind = tracking::ParseTrackerKind(tracker_->currentText().toStdString());
-  p.pcf = pcf_->value();
-  p.device = device_->currentText() == "cuda" ? Device::kCuda : Device::kCpu;
-  p.volume.encoding = volume::ParseVoxelEncoding(voxel_->currentText().toStdString());
-  p.volume.resolution = res_->value() / 8 * 8;
-  p.volume.size_m = float(size_->value());
-  p.volume.tau0 = float(tau0_->value());
-  p.volume.tau1_deg = float(tau1_->value());
+  s.pipeline = engine_->Options();  // throws SettingError naming the setting
   return s;
 }
 
 void MainWindow::ApplyEngineSettings() {
   error_->hide();
-  emit configure(CurrentSettings());
+  try {
+    emit configure(CurrentSettings());
+  } catch (const Error& e) {
+    OnFailed(tr("Engine settings: %1").arg(QString::fromStdString(e.what())));
+  }
 }
 
 void MainWindow::StartScan() {
@@ -557,14 +516,7 @@ void MainWindow::LoadSettings() {
   restoreGeometry(s.value("window/geometry").toByteArray());
   restoreState(s.value("window/state").toByteArray());
   if (s.contains("source")) source_->setCurrentText(s.value("source").toString());
-  tracker_->setCurrentText(s.value("engine/tracker", tracker_->currentText()).toString());
-  pcf_->setValue(s.value("engine/pcf", pcf_->value()).toInt());
-  device_->setCurrentText(s.value("engine/device", device_->currentText()).toString());
-  voxel_->setCurrentText(s.value("engine/voxel", voxel_->currentText()).toString());
-  res_->setValue(s.value("engine/resolution", res_->value()).toInt());
-  size_->setValue(s.value("engine/size_m", size_->value()).toDouble());
-  tau0_->setValue(s.value("engine/tau0", tau0_->value()).toDouble());
-  tau1_->setValue(s.value("engine/tau1", tau1_->value()).toDouble());
+  engine_->Load(s);
   tone_op_->setCurrentIndex(s.value("tone/operator", 0).toInt());
   exposure_->setValue(s.value("tone/exposure", 0).toInt());
   gamma_->setValue(s.value("tone/gamma", 1.0).toDouble());
@@ -575,14 +527,7 @@ void MainWindow::SaveSettings() const {
   s.setValue("window/geometry", saveGeometry());
   s.setValue("window/state", saveState());
   s.setValue("source", source_->currentText());
-  s.setValue("engine/tracker", tracker_->currentText());
-  s.setValue("engine/pcf", pcf_->value());
-  s.setValue("engine/device", device_->currentText());
-  s.setValue("engine/voxel", voxel_->currentText());
-  s.setValue("engine/resolution", res_->value());
-  s.setValue("engine/size_m", size_->value());
-  s.setValue("engine/tau0", tau0_->value());
-  s.setValue("engine/tau1", tau1_->value());
+  engine_->Save(s);
   s.setValue("tone/operator", tone_op_->currentIndex());
   s.setValue("tone/exposure", exposure_->value());
   s.setValue("tone/gamma", gamma_->value());

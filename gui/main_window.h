@@ -22,6 +22,8 @@ class QDockWidget;
 
 namespace hdrf::gui {
 
+class SettingsForm;
+
 class ImageView;
 class VtkView;
 class ExposurePlot;
@@ -98,9 +100,9 @@ class MainWindow : public QMainWindow {
   QMap<QString, QDockWidget*> docks_;
   VtkView* view3d_ = nullptr;
   ExposurePlot* plot_ = nullptr;
-  QComboBox *source_ = nullptr, *tracker_ = nullptr, *device_ = nullptr, *voxel_ = nullptr, *tone_op_ = nullptr;
-  QSpinBox *pcf_ = nullptr, *res_ = nullptr;
-  QDoubleSpinBox *size_ = nullptr, *tau0_ = nullptr, *tau1_ = nullptr, *gamma_ = nullptr;
+  QComboBox *source_ = nullptr, *tone_op_ = nullptr;
+  QDoubleSpinBox* gamma_ = nullptr;
+  SettingsForm* engine_ = nullptr;  // generated from the settings registry
   QSlider* exposure_ = nullptr;
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
   QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;

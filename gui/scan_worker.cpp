@@ -33,14 +33,10 @@ ScanWorker::~ScanWorker() = default;
 
 void ScanWorker::Open() {
   source_.reset();
-  pipe_.reset();
-  trajectory_.clear();
-  timestamps_.clear();
-  exp_est_.clear();
-  exp_rep_.clear();
+  session_.reset();
   mesh_.reset();
   source_ = OpenFrameSource(settings_.source);
-  pipe_ = std::make_unique<pipeline::Pipeline>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+  session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
 }
 
 void ScanWorker::Configure(const ScanSettings& s) {
@@ -49,18 +45,19 @@ void ScanWorker::Configure(const ScanSettings& s) {
   try {
     Open();
     QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
-    if (!pipe_->device_note().empty()) msg += " — " + QString::fromStdString(pipe_->device_note());
+    const pipeline::Pipeline& pipe = session_->pipeline();
+    if (!pipe.device_note().empty()) msg += " — " + QString::fromStdString(pipe.device_note());
     emit stateChanged(false, msg);
   } catch (const std::exception& e) {
     source_.reset();
-    pipe_.reset();
+    session_.reset();
     emit failed(tr("Cannot open the source: %1").arg(QString::fromStdString(e.what())));
     emit stateChanged(false, tr("No source"));
   }
 }
 
 void ScanWorker::Start() {
-  if (!pipe_) {
+  if (!session_) {
     try {
       Open();
     } catch (const std::exception& e) {
@@ -70,22 +67,22 @@ void ScanWorker::Start() {
   }
   if (running_) return;
   running_ = true;
-  emit stateChanged(true, tr("Scanning on the %1").arg(pipe_->device() == Device::kCuda ? "GPU" : "CPU"));
+  emit stateChanged(true, tr("Scanning on the %1").arg(session_->pipeline().device() == Device::kCuda ? "GPU" : "CPU"));
   QTimer::singleShot(0, this, &ScanWorker::Step);
 }
 
 void ScanWorker::Pause() {
   if (!running_) return;
   running_ = false;
-  emit stateChanged(false, tr("Paused after %1 frames").arg(pipe_ ? pipe_->frames() : 0));
+  emit stateChanged(false, tr("Paused after %1 frames").arg(session_ ? session_->frames() : 0));
 }
 
 void ScanWorker::Stop() {
   running_ = false;
   // Rewind the source; keep the model (export still possible) until Reset.
   try {
-    if (pipe_) source_ = OpenFrameSource(settings_.source);
-    emit stateChanged(false, tr("Stopped; the model of %1 frames is kept").arg(pipe_ ? pipe_->frames() : 0));
+    if (session_) source_ = OpenFrameSource(settings_.source);
+    emit stateChanged(false, tr("Stopped; the model of %1 frames is kept").arg(session_ ? session_->frames() : 0));
   } catch (const std::exception& e) {
     emit failed(QString::fromStdString(e.what()));
   }
@@ -102,45 +99,44 @@ void ScanWorker::Reset() {
 }
 
 void ScanWorker::Step() {
-  if (!running_ || !pipe_) return;
+  if (!running_ || !session_) return;
   try {
     pipeline::FrameInput f;
     if (!source_->Next(f)) {
       running_ = false;
-      emit finished(pipe_->frames());
-      emit stateChanged(false, tr("Finished: %1 frames").arg(pipe_->frames()));
+      emit finished(session_->frames());
+      emit stateChanged(false, tr("Finished: %1 frames").arg(session_->frames()));
       return;
     }
     auto s = std::make_shared<Snapshot>();
-    s->report = pipe_->Process(f);
-    trajectory_.push_back(s->report.T_world_camera);
-    timestamps_.push_back(s->report.timestamp);
-    exp_est_.push_back(s->report.exposure_ratio);
-    exp_rep_.push_back(s->report.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+    s->report = session_->Process(f);
+    pipeline::Pipeline& pipe = session_->pipeline();
     const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
     const bool last = source_->size() > 0 && s->report.index + 1 >= source_->size();
     if (!mesh_ || last ||
         (s->report.index % std::max(1, settings_.mesh_every_frames) == 0 &&
          now - mesh_time_ms_ >= settings_.mesh_min_interval_ms)) {
-      mesh_ = std::make_shared<const mesh::Mesh>(pipe_->ExtractMesh());
+      mesh_ = std::make_shared<const mesh::Mesh>(pipe.ExtractMesh());
       mesh_time_ms_ = now;
     }
     s->color = std::move(f.color);
-    s->images = pipe_->backend().Download();
+    s->images = pipe.DownloadViews();
     s->camera = source_->sensor().camera;
-    s->trajectory = trajectory_;
-    s->exposure_estimated = exp_est_;
-    s->exposure_reported = exp_rep_;
+    s->trajectory = session_->poses();
+    for (const pipeline::FrameReport& r : session_->reports()) {
+      s->exposure_estimated.push_back(r.exposure_ratio);
+      s->exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+    }
     s->mesh = mesh_;
-    s->volume_bytes = pipe_->volume_bytes();
+    s->volume_bytes = pipe.volume_stats().bytes;
     s->bricks = s->report.allocated_bricks;
     s->frames_total = source_->size();
-    s->device = DeviceName(pipe_->device());
+    s->device = DeviceName(pipe.device());
     emit snapshot(std::move(s));
   } catch (const std::exception& e) {
     running_ = false;
     emit failed(tr("Scan paused at frame %1: %2. The model so far is kept.")
-                    .arg(pipe_->frames())
+                    .arg(session_->frames())
                     .arg(QString::fromStdString(e.what())));
     emit stateChanged(false, tr("Paused (error)"));
     return;
@@ -150,12 +146,12 @@ void ScanWorker::Step() {
 
 void ScanWorker::ExportMesh(const QString& path) {
   cancel_export_ = false;
-  if (!pipe_) {
+  if (!session_) {
     emit exportDone(false, tr("Nothing to export: no model"));
     return;
   }
   try {
-    const mesh::Mesh m = pipe_->ExtractMesh([this](double f) {
+    const mesh::Mesh m = session_->pipeline().ExtractMesh([this](double f) {
       emit exportProgress(0.9 * f);
       return !cancel_export_;
     });
@@ -172,8 +168,9 @@ void ScanWorker::ExportMesh(const QString& path) {
 
 void ScanWorker::ExportTrajectory(const QString& path) {
   try {
+    if (!session_) throw Error("no scan");
     std::vector<io::TimedPose> t;
-    for (std::size_t i = 0; i < trajectory_.size(); ++i) t.push_back({timestamps_[i], trajectory_[i]});
+    for (const pipeline::FrameReport& r : session_->reports()) t.push_back({r.timestamp, r.T_world_camera});
     io::WriteTrajectory(path.toStdString(), t);
     emit exportDone(true, tr("Wrote %1 (%2 poses)").arg(path).arg(t.size()));
   } catch (const std::exception& e) {
@@ -183,8 +180,8 @@ void ScanWorker::ExportTrajectory(const QString& path) {
 
 void ScanWorker::ExportRender(const QString& path) {
   try {
-    if (!pipe_) throw Error("no model");
-    const auto r = pipe_->Render(pipe_->pose());
+    if (!session_) throw Error("no model");
+    const auto r = session_->pipeline().Render(session_->pipeline().pose());
     io::WriteExr(path.toStdString(), r.radiance);
     emit exportDone(true, tr("Wrote %1").arg(path));
   } catch (const std::exception& e) {

@@ -12,9 +12,8 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "pipeline/backend.h"
 #include "pipeline/frame_source.h"
-#include "pipeline/pipeline.h"
+#include "pipeline/scan_session.h"
 
 namespace hdrf::gui {
 
@@ -31,7 +30,7 @@ struct ScanSettings {
 struct Snapshot {
   pipeline::FrameReport report;
   ColorImage color;
-  pipeline::FrameImages images;      // radiance, confidence, filtered depth, NR, ray cast
+  pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast
   PinholeCamera camera;
   std::vector<Pose> trajectory;      // every pose so far
   std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)
@@ -75,9 +74,7 @@ class ScanWorker : public QObject {
   void Open();
   ScanSettings settings_;
   std::unique_ptr<pipeline::FrameSource> source_;
-  std::unique_ptr<pipeline::Pipeline> pipe_;
-  std::vector<Pose> trajectory_;
-  std::vector<double> timestamps_, exp_est_, exp_rep_;
+  std::unique_ptr<pipeline::ScanSession> session_;
   std::shared_ptr<const mesh::Mesh> mesh_;
   std::int64_t mesh_time_ms_ = 0;
   bool running_ = false;

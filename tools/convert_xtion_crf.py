@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Converts the HDRFusion authors' Xtion calibration (OpenCV FileStorage YAML, MIT licence,
-../shared/data/xtion_crf) into a sensor.json profile (FORMATS.md) for resources/sensors/.
+../shared/data/xtion_crf) into a sensor.json profile (docs/formats.md) for resources/sensors/.
 
 Interpretation (the authors' MATLAB calibration code is not public):
   inv_Cam_Response_Func  256x3, row = level, column = channel in R, G, B order as the

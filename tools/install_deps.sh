@@ -3,7 +3,7 @@
 # Run as root (or with sudo available). The CUDA toolkit is optional and never installed
 # here: when nvcc is present the CUDA backend is built, otherwise the CPU backend only.
 # --peers also installs the peers of the tracking benchmark (OpenCV contrib rgbd, Open3D),
-# so that hdrfusion-peers is built and `hdrfusion bench --suite paper` runs them.
+# so that hdrfusion-peers is built and `hdrfusion-experiments paper --peers ...` runs them.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config

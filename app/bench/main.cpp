@@ -8,7 +8,7 @@
 
 #include "common/cuda_runtime.h"
 #include "common/error.h"
-#include "pipeline/bench.h"
+#include "engine_bench.h"
 
 int main(int argc, char** argv) {
   using namespace hdrf;

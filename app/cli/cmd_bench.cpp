@@ -1,5 +1,5 @@
-// hdrfusion bench: prints speed tables. Suites grow with the engine; today: the synthetic
-// sensor at 320x240 and 640x480.
+// hdrfusion bench: speed tables of the synthetic sensor (sim) and of the engine per stage
+// (engine, also hdrfusion-bench).
 #include <omp.h>
 
 #include <chrono>
@@ -10,7 +10,7 @@
 #include "cli/commands.h"
 #include "common/error.h"
 #include "pipeline/frame_source.h"
-#include "pipeline/bench.h"
+#include "engine_bench.h"
 #include "pipeline/pipeline.h"
 #include "sim/synthetic_source.h"
 
@@ -21,59 +21,18 @@ Command AddBenchCommand(CLI::App& app) {
     std::string suite = "sim";
     int frames = 60;
     std::string device = "both";
-    std::string out = "docs/results";
-    int pairs = 10;
-    std::string size = "320x240", work = "build/bench-data";
-    std::vector<std::string> ae = {"flicker", "smooth"};
-    bool no_peers = false;
-    std::string data = "../shared/data", scene = "room";
-    int sweeps = 0;
-    double noise_scale = 1.0;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
-                  "sim (the synthetic sensor), engine (per-stage times), landscape (error functions "
-                  "around the true pose, the paper's figure), nr-figure (NR across an exposure change), tracking "
-                  "(trackers and peers over 1000 frames), radiance (HDR accuracy, dynamic range), calibration "
-                  "(response fitting on every DoRF curve), or paper (all of docs/results)")
-      ->check(CLI::IsMember({"sim", "engine", "landscape", "nr-figure", "tracking", "radiance", "calibration", "paper"}))->capture_default_str();
-  cmd->add_option("--out", a->out, "landscape, nr-figure: output folder")->capture_default_str();
-  cmd->add_option("--pairs", a->pairs, "landscape: frame pairs a stop or more apart")->check(CLI::Range(1, 50))
-      ->capture_default_str();
-  auto* frames_opt = cmd->add_option("--frames", a->frames, "Frames per measurement (tracking: default 1000)")->check(CLI::Range(5, 100000))
+                  "sim (the synthetic sensor) or engine (per-stage times and frames/s per device and size); "
+                  "the paper's experiments are hdrfusion-experiments, not part of this tool")
+      ->check(CLI::IsMember({"sim", "engine"}))->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Timed frames per measurement")->check(CLI::Range(5, 100000))
       ->capture_default_str();
   cmd->add_option("--device", a->device, "Engine suite: cpu, cuda or both (CUDA rows where a GPU is usable)")
       ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
-  cmd->add_option("--size", a->size, "tracking: image size")->capture_default_str();
-  cmd->add_option("--ae", a->ae, "tracking: auto-exposure modes")->delimiter(',')
-      ->check(CLI::IsMember({"flicker", "smooth", "fixed"}))->capture_default_str();
-  cmd->add_option("--work", a->work, "tracking: folder for the sequences everyone reads (its room-* and peers-* folders are replaced)")->capture_default_str();
-  cmd->add_option("--data", a->data, "calibration, paper: folder holding dorf/ and emor/ (SOURCES.md)")->capture_default_str();
-  cmd->add_option("--sweeps", a->sweeps, "calibration: at most this many sweeps of 3 curves (default: all 67)")
-      ->check(CLI::Range(1, 1000));
-  cmd->add_option("--scene", a->scene, "calibration: scene of the simulated sweeps")
-      ->check(CLI::IsMember({"room", "desk"}))->capture_default_str();
-  cmd->add_option("--noise-scale", a->noise_scale, "calibration: multiplies the simulated sensor noise")
-      ->check(CLI::Range(0.0, 10.0))->capture_default_str();
-  cmd->add_flag("--no-peers", a->no_peers, "tracking: do not run the peers (OpenCV rgbd, Open3D)");
-  return {cmd, [a, frames_opt] {
-    if (a->suite == "radiance")
-      return RunRadianceAccuracy(a->out, frames_opt->count() > 0 ? a->frames : 300, a->size);
-    if (a->suite == "tracking" || a->suite == "paper") {
-      TrackingExperimentArgs t;
-      if (frames_opt->count() > 0) t.frames = a->frames;
-      t.size = a->size;
-      t.ae_modes = a->ae;
-      t.out = a->out;
-      t.work = a->work;
-      t.peers = !a->no_peers;
-      return a->suite == "paper" ? RunPaper(t, a->pairs, a->data) : RunTrackingExperiment(t);
-    }
-    if (a->suite == "calibration")
-      return RunCalibrationAccuracy({a->out, a->data, a->scene, a->sweeps, a->noise_scale});
-    if (a->suite == "landscape") return RunLandscape(a->out, a->pairs, 10);
-    if (a->suite == "nr-figure") return RunNrFigure(a->out);
+  return {cmd, [a] {
     if (a->suite == "engine") {
       pipeline::EngineBenchOptions o;
       o.frames = a->frames;

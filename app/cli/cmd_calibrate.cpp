@@ -72,7 +72,7 @@ Command AddCalibrateCommand(CLI::App& app) {
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
       "calibrate", "Fit camera response, noise and PCF from an exposure sweep; write sensor.json");
-  cmd->add_option("SWEEP", a->sweep, "Exposure sweep folder (FORMATS.md)")->required();
+  cmd->add_option("SWEEP", a->sweep, "Exposure sweep folder (docs/formats.md)")->required();
   cmd->add_option("--out", a->out, "sensor.json to write")->required();
   cmd->add_option("--method", a->method, "Response fit")
       ->check(CLI::IsMember({"debevec", "robertson", "emor"}))->capture_default_str();

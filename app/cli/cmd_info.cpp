@@ -9,7 +9,7 @@
 namespace hdrf::cli {
 
 Command AddInfoCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Describe a recorded sequence (FORMATS.md layout)");
+  auto* cmd = app.add_subcommand("info", "Describe a recorded sequence (layout: docs/formats.md)");
   auto folder = std::make_shared<std::string>();
   auto samples = std::make_shared<std::size_t>(30);
   cmd->add_option("SEQUENCE", *folder, "Sequence folder")->required();
@@ -19,6 +19,7 @@ Command AddInfoCommand(CLI::App& app) {
     const io::SequenceReader seq(*folder);
     const io::SequenceSummary s = io::Summarize(seq, *samples);
     std::fputs(s.ToText(*folder).c_str(), stdout);
+    for (const std::string& w : seq.sensor().warnings) std::fprintf(stderr, "info: warning: %s\n", w.c_str());
     return 0;
   }};
 }

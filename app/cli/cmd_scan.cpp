@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/setting_flags.h"
 #include "io/source_spec.h"
 #include "common/error.h"
 #include "io/exr.h"
@@ -20,6 +21,7 @@
 #include "io/tum.h"
 #include "mesh/mesh.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/scan_session.h"
 #include "tonemap/display.h"
 
 namespace hdrf::cli {
@@ -57,9 +59,8 @@ void WriteRender(const fs::path& dir, const std::string& name, const volume::Vol
 
 Command AddScanCommand(CLI::App& app) {
   struct Args {
-    std::string source, out, tracker, device = "cpu", options, response, voxel;
-    int volume_res = -1, pcf = -1, max_frames = 0;  // -1: not given
-    double volume_size = -1;
+    std::string source, out, options, response;
+    int max_frames = 0;
     bool frame_to_frame = false;
   };
   auto a = std::make_shared<Args>();
@@ -67,62 +68,39 @@ Command AddScanCommand(CLI::App& app) {
   cmd->add_option("SOURCE", a->source, "Sequence folder, or synthetic:[scene=room,seed=1,frames=300,ae=smooth,size=320x240]")
       ->required();
   cmd->add_option("--out", a->out, "Output folder (created; existing outputs are replaced)")->required();
-  cmd->add_option("--options", a->options, "JSON file of engine settings (flags below override it)");
-  cmd->add_option("--tracker", a->tracker, "nr, nr+icp (default), icp, or intensity (the baseline)")
-      ->check(CLI::IsMember({"nr", "nr+icp", "icp", "intensity"}));
-  cmd->add_flag("--frame-to-frame", a->frame_to_frame, "Track against the previous frame, not the model");
-  cmd->add_option("--volume-res", a->volume_res, "Voxels per side (multiple of 8; default 256)");
-  cmd->add_option("--volume-size", a->volume_size, "Side of the volume in metres (default 6)");
-  cmd->add_option("--pcf", a->pcf, "Pixel confidence p0..p3 (default 1)");
-  cmd->add_option("--voxel", a->voxel, "Voxel storage: compact (12 B, default), no-nr (24 B) or full (28 B)")
-      ->check(CLI::IsMember({"compact", "no-nr", "full"}));
-  cmd->add_option("--device", a->device, "cpu or cuda")->check(CLI::IsMember({"cpu", "cuda"}));
+  cmd->add_option("--options", a->options, "JSON file of engine settings (docs/formats.md); the flags override it");
+  cmd->add_flag("--frame-to-frame", a->frame_to_frame, "Track against the previous frame (tracker.frame_to_model false)");
   cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
       ->check(CLI::IsMember({"srgb"}));
   cmd->add_option("--frames", a->max_frames, "Process at most this many frames");
-  return {cmd, [a] {
+  auto flags = std::make_shared<SettingFlags>(cmd);
+  return {cmd, [a, flags] {
     pipeline::PipelineOptions o;
     if (!a->options.empty()) io::ReadPipelineOptions(a->options, o);
-    if (!a->tracker.empty()) o.tracker.kind = tracking::ParseTrackerKind(a->tracker);
     if (a->frame_to_frame) o.tracker.frame_to_model = false;
-    if (a->volume_res != -1) o.volume.resolution = a->volume_res;
-    if (a->volume_size != -1) o.volume.size_m = float(a->volume_size);
-    if (a->pcf >= 0) o.pcf = a->pcf;
-    if (!a->voxel.empty()) o.volume.encoding = volume::ParseVoxelEncoding(a->voxel);
-    if (a->device == "cuda") o.device = Device::kCuda;
+    flags->Apply(o);
     o.Check();
     auto source = io::OpenSource(a->source, a->response);
     const fs::path out = a->out;
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
-    pipeline::Pipeline pipe(o, source->sensor().camera, source->sensor());
+    for (const std::string& w : source->sensor().warnings) std::fprintf(stderr, "scan: warning: %s\n", w.c_str());
+    pipeline::ScanSession session(o, source->sensor().camera, source->sensor());
+    pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
     const int total = a->max_frames > 0 ? std::min(a->max_frames, source->size()) : source->size();
     std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm), on the %s\n",
                  source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
                  o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m(),
                  pipe.device() == Device::kCuda ? ("GPU: " + CudaDeviceDescription()).c_str() : "CPU");
-    std::vector<io::TimedPose> trajectory;
     json frames = json::array();
-    std::optional<Pose> first_true;
-    std::vector<double> exp_err;
-    int lost = 0;
-    pipeline::StageTimes sum;
     std::string failure;
     Progress progress("scan", total);
     try {
       pipeline::FrameInput f;
       for (int i = 0; i < total && source->Next(f); ++i) {
-        const pipeline::FrameReport r = pipe.Process(f);
-        trajectory.push_back({r.timestamp, r.T_world_camera});
-        lost += r.tracking.lost;
-        sum.convert += r.ms.convert;
-        sum.normalize += r.ms.normalize;
-        sum.track += r.ms.track;
-        sum.compensate += r.ms.compensate;
-        sum.integrate += r.ms.integrate;
-        sum.raycast += r.ms.raycast;
+        const pipeline::FrameReport& r = session.Process(f);
         json fr = {{"index", r.index},
                    {"timestamp", r.timestamp},
                    {"ms", {{"convert", r.ms.convert}, {"normalize", r.ms.normalize}, {"track", r.ms.track},
@@ -133,11 +111,7 @@ Command AddScanCommand(CLI::App& app) {
                                  {"iterations", r.tracking.iterations}}},
                    {"fused", r.fused},
                    {"exposure", {{"estimated_ratio", r.exposure_ratio}, {"samples", r.exposure_samples}}}};
-        if (r.exposure_ratio_reported) {
-          fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
-          if (r.index > 0 && r.exposure_samples > 0)
-            exp_err.push_back(std::abs(r.exposure_ratio / *r.exposure_ratio_reported - 1));
-        }
+        if (r.exposure_ratio_reported) fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
         frames.push_back(fr);
         if (r.tracking.lost)
           std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
@@ -147,37 +121,39 @@ Command AddScanCommand(CLI::App& app) {
       failure = e.what();
     }
     progress.Done();
-    const int n = int(trajectory.size());
+    const int n = session.frames();
     if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
     // Outputs: everything built so far.
+    std::vector<io::TimedPose> trajectory;
+    for (const pipeline::FrameReport& r : session.reports()) trajectory.push_back({r.timestamp, r.T_world_camera});
     io::WriteTrajectory(out / "trajectory.txt", trajectory);
     std::fprintf(stderr, "scan: extracting the mesh...\n");
     const mesh::Mesh m = pipe.ExtractMesh();
     io::WritePly(out / "mesh.ply", m);
     WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose());
     WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity());
-    std::sort(exp_err.begin(), exp_err.end());
-    const double total_ms = sum.total();
+    const pipeline::StageTimes mean = session.mean_ms();
+    const pipeline::VolumeStats vs = pipe.volume_stats();
+    const int lost = session.lost();
+    const std::optional<double> exp_err = session.exposure_median_relative_error();
     json report = {{"source", source->description()},
                    {"device", DeviceName(pipe.device())},
                    {"frames", n},
                    {"lost_frames", lost},
                    {"options", json::parse(io::PipelineOptionsToJson(o))},
-                   {"mean_ms", {{"convert", sum.convert / n}, {"normalize", sum.normalize / n}, {"track", sum.track / n},
-                                {"compensate", sum.compensate / n}, {"integrate", sum.integrate / n},
-                                {"raycast", sum.raycast / n}, {"total", total_ms / n}}},
-                   {"fps", total_ms > 0 ? 1000.0 * n / total_ms : 0},
-                   {"volume", {{"allocated_bricks", pipe.volume().allocated_bricks()},
-                               {"bytes", pipe.volume_bytes()}, {"full", pipe.volume().full()}}},
+                   {"mean_ms", {{"convert", mean.convert}, {"normalize", mean.normalize}, {"track", mean.track},
+                                {"compensate", mean.compensate}, {"integrate", mean.integrate},
+                                {"raycast", mean.raycast}, {"total", mean.total()}}},
+                   {"fps", session.frames_per_second()},
+                   {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full}}},
                    {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
                    {"frames_detail", frames}};
-    if (!exp_err.empty()) report["exposure_median_relative_error"] = exp_err[exp_err.size() / 2];
+    if (exp_err) report["exposure_median_relative_error"] = *exp_err;
     if (!failure.empty()) report["error"] = failure;
     io::WriteFileAtomically(out / "report.json", report.dump(1) + "\n");
     std::printf("scanned %d frames (%d lost) at %.1f frames/s: %zu mesh vertices, %zu triangles\n", n, lost,
-                total_ms > 0 ? 1000.0 * n / total_ms : 0.0, m.position.size(), m.triangles.size());
-    if (!exp_err.empty())
-      std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * exp_err[exp_err.size() / 2]);
+                session.frames_per_second(), m.position.size(), m.triangles.size());
+    if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
     std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, report.json}\n",
                 a->out.c_str());
     if (!failure.empty())

@@ -15,7 +15,6 @@ int main(int argc, char** argv) {
       hdrf::cli::AddInfoCommand(app),
       hdrf::cli::AddRadianceCommand(app),
       hdrf::cli::AddSimulateCommand(app),
-      hdrf::cli::AddContactSheetCommand(app),
       hdrf::cli::AddScanCommand(app),
       hdrf::cli::AddEvalCommand(app),
       hdrf::cli::AddCalibrateCommand(app),

@@ -1,5 +1,5 @@
 // Per-frame image processing: radiance and confidence, normalized radiance, pyramids, depth
-// filtering, vertex and normal maps (ARCHITECTURE.md steps 2-3).
+// filtering, vertex and normal maps (docs/architecture.md, steps 2-3).
 #pragma once
 
 #include <vector>
@@ -13,37 +13,15 @@
 
 namespace hdrf::imaging {
 
-// Radiance R = f^-1(I) per channel (no division by exposure: the engine works in the
-// radiance units of the live frame and estimates exposure ratios itself), and the
-// confidence of each pixel: the mean over channels of PCF p_k (k = pcf_power, 0..3), with
-// saturated or black channels (level 255 or 0) given confidence 0.
-// Runs on `device` (the CUDA version is checked against this one by tests/gpu).
-void ConvertFrame(const ColorImage& color, const radiometry::InverseResponse& inverse,
-                  const radiometry::PcfTables& pcf, int pcf_power, RadianceImage& radiance,
-                  Image<float>& confidence, Image<float>& max_confidence,
-                  Device device = Device::kCpu);
-
-namespace detail {
-void ConvertFrameCuda(const ColorImage& color, const float* inverse, const float* pcf,
-                      RadianceImage& radiance, Image<float>& confidence, Image<float>& max_confidence);
-}  // namespace detail
-
-// Luminance of a radiance image (Rec. 709).
-Image<float> Luminance(const RadianceImage& radiance);
-
-struct NormalizedRadianceOptions {
-  int patch = 15;       // side of the local patch N, in pixels of the down-sampled image
-  int downsample = 2;   // local statistics on an image down-sampled by this factor
-  float min_std = 1e-3f;  // relative floor on the local std (flat, noise-only patches)
+// Filtering of the depth before tracking and fusion, and the normal maps made from it.
+struct DepthFilterOptions {
+  bool bilateral = true;           // edge-preserving bilateral filter of the depth
+  float sigma_space_px = 2.0f;     // its spatial sigma, pixels
+  float sigma_depth_m = 0.03f;     // its range sigma, metres
+  int radius = 3;                  // its window radius, pixels (1..kBilateralMaxRadius)
+  float max_normal_jump_m = 0.1f;  // normals are undefined across depth jumps larger than this
+  void Check() const;              // throws SettingError naming the setting
 };
-
-// Normalized radiance (R - mean_N(R)) / std_N(R) of a luminance image, with the local mean
-// and std from integral images of a down-sampled copy (cost independent of the patch size),
-// bilinearly up-sampled. Pixels with value <= 0 (no data) are left out of the statistics and
-// get NR = 0. min_std is relative to the local mean.
-Image<float> NormalizedRadiance(const Image<float>& luminance, const NormalizedRadianceOptions& o,
-                                Image<float>* local_mean = nullptr,
-                                Image<float>* local_std = nullptr);
 
 // Image pyramids: each level half the size of the one before.
 Image<float> Downsample(const Image<float>& img);         // 2x2 mean

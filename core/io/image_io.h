@@ -1,4 +1,4 @@
-// PNG colour and 16-bit depth images, checked against what FORMATS.md promises.
+// PNG colour and 16-bit depth images, checked against what docs/formats.md promises.
 #pragma once
 
 #include <filesystem>

@@ -1,34 +1,80 @@
 #include "io/options_json.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
 #include "io/json_file.h"
+#include "pipeline/settings.h"
 
 namespace hdrf::io {
 
 using nlohmann::json;
+using pipeline::Setting;
+using pipeline::SettingKind;
 
 namespace {
 
-template <typename T>
-void Get(const std::filesystem::path& file, const json& obj, const std::string& section,
-         const char* key, T& out) {
-  if (!obj.contains(key)) return;
-  try {
-    out = obj.at(key).get<T>();
-  } catch (const json::exception&) {
-    throw InputError(file, "'" + section + key + "' has the wrong type");
+// A JSON value of the setting's type, as the registry's text; throws naming the key.
+std::string ValueText(const std::filesystem::path& file, const Setting& s, const json& v) {
+  auto wrong = [&](const char* expected) {
+    return InputError(file, "'" + s.key + "' must be " + expected + " (" + s.Range() + "), found " + v.dump());
+  };
+  switch (s.kind) {
+    case SettingKind::kBool:
+      if (!v.is_boolean()) throw wrong("true or false");
+      return v.get<bool>() ? "true" : "false";
+    case SettingKind::kChoice:
+      if (!v.is_string()) throw wrong("a string");
+      return v.get<std::string>();
+    case SettingKind::kInt:
+      if (!v.is_number_integer()) throw wrong("a whole number");
+      return v.dump();
+    case SettingKind::kReal:
+      if (!v.is_number()) throw wrong("a number");
+      return v.dump();
+    case SettingKind::kIntList: {
+      if (!v.is_array()) throw wrong("an array of whole numbers");
+      std::string t;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_number_integer()) throw wrong("an array of whole numbers");
+        t += (i ? "," : "") + v[i].dump();
+      }
+      return t;
+    }
   }
+  return v.dump();
 }
 
-void RefuseUnknown(const std::filesystem::path& file, const json& obj, const std::string& section,
-                   std::initializer_list<const char*> known) {
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool ok = false;
-    for (const char* k : known) ok |= it.key() == k;
-    if (!ok) throw InputError(file, "unknown setting '" + section + it.key() + "'");
+json TextToJson(const Setting& s, const std::string& text) {
+  switch (s.kind) {
+    case SettingKind::kBool: return text == "true";
+    case SettingKind::kChoice: return text;
+    case SettingKind::kInt: return std::stoll(text);
+    case SettingKind::kReal: return std::stod(text);
+    case SettingKind::kIntList: {
+      json a = json::array();
+      std::size_t start = 0;
+      for (std::size_t k = 0; k <= text.size(); ++k)
+        if (k == text.size() || text[k] == ',') a.push_back(std::stoi(text.substr(start, k - start))), start = k + 1;
+      return a;
+    }
+  }
+  return text;
+}
+
+void Apply(const std::filesystem::path& file, pipeline::PipelineOptions& o, const std::string& key, const json& v) {
+  // Files written before the depth section had the bilateral switch at the top level.
+  const std::string k = key == "bilateral" ? "depth.bilateral" : key;
+  const Setting* s = nullptr;
+  for (const Setting& c : pipeline::Settings())
+    if (c.key == k) s = &c;
+  if (!s) throw InputError(file, "unknown setting '" + key + "'");
+  try {
+    s->set(o, ValueText(file, *s, v));
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    throw InputError(file, e.what());
   }
 }
 
@@ -37,71 +83,12 @@ void RefuseUnknown(const std::filesystem::path& file, const json& obj, const std
 void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOptions& o) {
   const json j = ReadJsonFile(file);
   if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
-  RefuseUnknown(file, j, "", {"volume", "tracker", "nr", "pcf", "bilateral", "device"});
-  Get(file, j, "", "pcf", o.pcf);
-  Get(file, j, "", "bilateral", o.bilateral);
-  if (j.contains("device")) {
-    std::string d;
-    Get(file, j, "", "device", d);
-    if (d != "cpu" && d != "cuda") throw InputError(file, "'device' must be \"cpu\" or \"cuda\"");
-    o.device = d == "cuda" ? Device::kCuda : Device::kCpu;
-  }
-  if (j.contains("volume")) {
-    const json& v = j["volume"];
-    RefuseUnknown(file, v, "volume.", {"resolution", "size_m", "truncation_voxels", "max_weight",
-                                       "max_radiance_weight", "tau0", "tau1_deg", "max_memory_mb", "voxel"});
-    Get(file, v, "volume.", "resolution", o.volume.resolution);
-    Get(file, v, "volume.", "size_m", o.volume.size_m);
-    Get(file, v, "volume.", "truncation_voxels", o.volume.truncation_voxels);
-    Get(file, v, "volume.", "max_weight", o.volume.max_weight);
-    Get(file, v, "volume.", "max_radiance_weight", o.volume.max_radiance_weight);
-    Get(file, v, "volume.", "tau0", o.volume.tau0);
-    Get(file, v, "volume.", "tau1_deg", o.volume.tau1_deg);
-    Get(file, v, "volume.", "max_memory_mb", o.volume.max_memory_mb);
-    if (v.contains("voxel")) {
-      std::string e;
-      Get(file, v, "volume.", "voxel", e);
-      try {
-        o.volume.encoding = volume::ParseVoxelEncoding(e);
-      } catch (const Error& err) {
-        throw InputError(file, std::string("'volume.voxel': ") + err.what());
-      }
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it.value().is_object()) {
+      for (auto f = it.value().begin(); f != it.value().end(); ++f) Apply(file, o, it.key() + "." + f.key(), f.value());
+    } else {
+      Apply(file, o, it.key(), it.value());
     }
-  }
-  if (j.contains("tracker")) {
-    const json& t = j["tracker"];
-    RefuseUnknown(file, t, "tracker.", {"kind", "frame_to_model", "levels", "iterations", "icp_sigma_m",
-                                        "photo_sigma", "huber_k", "icp_max_dist_m", "icp_max_angle_deg",
-                                        "min_inlier_share", "max_condition", "max_jump_m", "max_jump_deg"});
-    if (t.contains("kind")) {
-      std::string k;
-      Get(file, t, "tracker.", "kind", k);
-      o.tracker.kind = tracking::ParseTrackerKind(k);
-    }
-    Get(file, t, "tracker.", "frame_to_model", o.tracker.frame_to_model);
-    Get(file, t, "tracker.", "levels", o.tracker.levels);
-    if (t.contains("iterations")) {
-      std::vector<int> it;
-      Get(file, t, "tracker.", "iterations", it);
-      if (it.empty() || it.size() > 4) throw InputError(file, "'tracker.iterations' needs 1 to 4 numbers");
-      for (std::size_t i = 0; i < it.size(); ++i) o.tracker.iterations[i] = it[i];
-    }
-    Get(file, t, "tracker.", "icp_sigma_m", o.tracker.icp_sigma_m);
-    Get(file, t, "tracker.", "photo_sigma", o.tracker.photo_sigma);
-    Get(file, t, "tracker.", "huber_k", o.tracker.huber_k);
-    Get(file, t, "tracker.", "icp_max_dist_m", o.tracker.icp_max_dist_m);
-    Get(file, t, "tracker.", "icp_max_angle_deg", o.tracker.icp_max_angle_deg);
-    Get(file, t, "tracker.", "min_inlier_share", o.tracker.min_inlier_share);
-    Get(file, t, "tracker.", "max_condition", o.tracker.max_condition);
-    Get(file, t, "tracker.", "max_jump_m", o.tracker.max_jump_m);
-    Get(file, t, "tracker.", "max_jump_deg", o.tracker.max_jump_deg);
-  }
-  if (j.contains("nr")) {
-    const json& n = j["nr"];
-    RefuseUnknown(file, n, "nr.", {"patch", "downsample", "min_std"});
-    Get(file, n, "nr.", "patch", o.nr.patch);
-    Get(file, n, "nr.", "downsample", o.nr.downsample);
-    Get(file, n, "nr.", "min_std", o.nr.min_std);
   }
   try {
     o.Check();
@@ -111,29 +98,13 @@ void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOp
 }
 
 std::string PipelineOptionsToJson(const pipeline::PipelineOptions& o) {
-  json j;
-  j["pcf"] = o.pcf;
-  j["bilateral"] = o.bilateral;
-  j["device"] = DeviceName(o.device);
-  j["volume"] = {{"resolution", o.volume.resolution}, {"size_m", o.volume.size_m},
-                 {"truncation_voxels", o.volume.truncation_voxels}, {"max_weight", o.volume.max_weight},
-                 {"max_radiance_weight", o.volume.max_radiance_weight}, {"tau0", o.volume.tau0},
-                 {"tau1_deg", o.volume.tau1_deg}, {"max_memory_mb", o.volume.max_memory_mb},
-                 {"voxel", volume::VoxelEncodingName(o.volume.encoding)}};
-  j["tracker"] = {{"kind", tracking::TrackerName(o.tracker.kind)},
-                  {"frame_to_model", o.tracker.frame_to_model},
-                  {"levels", o.tracker.levels},
-                  {"iterations", std::vector<int>(o.tracker.iterations.begin(), o.tracker.iterations.begin() + o.tracker.levels)},
-                  {"icp_sigma_m", o.tracker.icp_sigma_m},
-                  {"photo_sigma", o.tracker.photo_sigma},
-                  {"huber_k", o.tracker.huber_k},
-                  {"icp_max_dist_m", o.tracker.icp_max_dist_m},
-                  {"icp_max_angle_deg", o.tracker.icp_max_angle_deg},
-                  {"min_inlier_share", o.tracker.min_inlier_share},
-                  {"max_condition", o.tracker.max_condition},
-                  {"max_jump_m", o.tracker.max_jump_m},
-                  {"max_jump_deg", o.tracker.max_jump_deg}};
-  j["nr"] = {{"patch", o.nr.patch}, {"downsample", o.nr.downsample}, {"min_std", o.nr.min_std}};
+  json j = json::object();
+  for (const Setting& s : pipeline::Settings()) {
+    const std::size_t dot = s.key.find('.');
+    const json value = TextToJson(s, s.get(o));
+    if (dot == std::string::npos) j[s.key] = value;
+    else j[s.key.substr(0, dot)][s.key.substr(dot + 1)] = value;
+  }
   return j.dump(2);
 }
 

@@ -86,7 +86,7 @@ mesh::Mesh ReadPly(const std::filesystem::path& file) {
       ++prop;
     }
   }
-  if (prop != 12) throw InputError(file, "vertex properties do not follow FORMATS.md");
+  if (prop != 12) throw InputError(file, "vertex properties do not follow the HDR PLY layout (docs/formats.md)");
   mesh::Mesh m;
   m.position.resize(nv);
   m.normal.resize(nv);

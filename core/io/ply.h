@@ -1,4 +1,4 @@
-// HDR meshes as binary little-endian PLY (FORMATS.md): x y z, nx ny nz (float), red green
+// HDR meshes as binary little-endian PLY (docs/formats.md): x y z, nx ny nz (float), red green
 // blue (uchar, tone-mapped sRGB), radiance_r/g/b (float, linear); faces as
 // "list uchar int vertex_indices".
 #pragma once

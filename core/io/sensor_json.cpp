@@ -94,12 +94,31 @@ SensorInfo ReadSensorJson(const std::filesystem::path& file) {
     m.sigma_c = Triple(file, Require(file, n, "sigma_c", "noise."), "noise.sigma_c");
     s.noise = m;
   }
+  // The project's own keys live under "hdrfusion"; every other block belongs to whoever wrote
+  // it and is ignored (a warning where it uses a name the project knows).
+  if (j.contains("hdrfusion")) {
+    const json& own = j["hdrfusion"];
+    if (!own.is_object()) throw InputError(file, "'hdrfusion' must be an object");
+    if (own.contains("synthetic")) {
+      const json& syn = own["synthetic"];
+      if (!syn.is_object() || !syn.contains("scene") || !syn["scene"].is_string() || !syn.contains("seed") ||
+          !syn["seed"].is_number_unsigned() || syn["seed"].get<std::uint64_t>() > 0xffffffffull)
+        throw InputError(file, "'hdrfusion.synthetic' must be {\"scene\": name, \"seed\": unsigned 32-bit number}");
+      s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
+    }
+  }
   if (j.contains("synthetic")) {
+    // Sequences written before the "hdrfusion" block held {"scene", "seed"} here; other
+    // generators write blocks of their own under this name.
     const json& syn = j["synthetic"];
-    if (!syn.is_object() || !syn.contains("scene") || !syn["scene"].is_string() ||
-        !syn.contains("seed") || !syn["seed"].is_number_unsigned())
-      throw InputError(file, "'synthetic' must be {\"scene\": name, \"seed\": unsigned number}");
-    s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
+    const bool ours = syn.is_object() && syn.size() == 2 && syn.contains("scene") && syn["scene"].is_string() &&
+                      syn.contains("seed") && syn["seed"].is_number_unsigned() &&
+                      syn["seed"].get<std::uint64_t>() <= 0xffffffffull;
+    if (ours && !s.synthetic)
+      s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
+    else if (!ours)
+      s.warnings.push_back(file.string() + ": the 'synthetic' block is not this project's (it holds " +
+                           (syn.is_object() ? "other keys" : "no object") + "); ignored");
   }
   return s;
 }
@@ -121,7 +140,7 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
     s.noise->Check(file.string());
     j["noise"] = {{"sigma_s", s.noise->sigma_s}, {"sigma_c", s.noise->sigma_c}};
   }
-  if (s.synthetic) j["synthetic"] = {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}};
+  if (s.synthetic) j["hdrfusion"] = {{"synthetic", {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}}}};
   WriteFileAtomically(file, j.dump(2) + "\n");
 }
 

@@ -1,4 +1,4 @@
-// sensor.json reader and writer (FORMATS.md).
+// sensor.json reader and writer (docs/formats.md).
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Recorded RGB-D sequences in the TUM layout plus HDR extras (FORMATS.md).
+// Recorded RGB-D sequences in the TUM layout plus HDR extras (docs/formats.md).
 #pragma once
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-// A recorded sequence (FORMATS.md) as a pipeline frame source.
+// A recorded sequence (docs/formats.md) as a pipeline frame source.
 #pragma once
 
 #include "io/sequence.h"

@@ -1,4 +1,4 @@
-// Exposure sweeps (FORMATS.md): a recorded sequence of a static scene whose every colour
+// Exposure sweeps (docs/formats.md): a recorded sequence of a static scene whose every colour
 // frame has an exposure in exposure.txt. Depth is optional.
 #pragma once
 

@@ -1,4 +1,4 @@
-// TUM RGB-D text files: image lists, trajectories, exposures (FORMATS.md).
+// TUM RGB-D text files: image lists, trajectories, exposures (docs/formats.md).
 #pragma once
 
 #include <filesystem>

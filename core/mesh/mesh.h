@@ -9,6 +9,10 @@
 #include "common/vec.h"
 #include "volume/volume.h"
 
+namespace hdrf::volume {
+class DeviceVolume;
+}
+
 namespace hdrf::mesh {
 
 struct Mesh {
@@ -23,5 +27,7 @@ struct Mesh {
 // shared along voxel edges. Progress callback (0..1) may be null.
 Mesh ExtractMesh(const volume::Volume& volume, void (*progress)(double, void*) = nullptr,
                  void* user = nullptr);
+// The same surface from the model on the GPU (mesh_cuda.cu; CUDA builds only).
+Mesh ExtractMeshOnGpu(const volume::DeviceVolume& volume);
 
 }  // namespace hdrf::mesh

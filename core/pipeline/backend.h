@@ -11,24 +11,33 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
+#include "exposure/exposure.h"
 #include "imaging/imaging.h"
+#include "pipeline/options.h"
 #include "mesh/mesh.h"
 #include "tracking/tracking.h"
 #include "volume/volume.h"
 
 namespace hdrf::pipeline {
 
-struct PipelineOptions;
-
 struct BackendSetup {
-  const PipelineOptions* options;
+  const PipelineOptions& options;  // copied by the backend
   PinholeCamera camera;
   const float* inverse;  // 3 x 256 inverse response, channel-major
   const float* pcf;      // 3 x 256 PCF of the chosen variant
 };
 
-// Host copies of a frame's images and of the last ray cast: what the studio's views show
-// and what the backend parity tests compare.
+// What the studio's live views show of a frame (host copies): its radiance, confidence,
+// normalized radiance and filtered depth, and the model ray cast from its pose.
+struct FrameViews {
+  RadianceImage radiance;
+  Image<float> confidence, max_confidence, nr;
+  DepthImage depth;  // filtered, metres
+  volume::Volume::Rendering render;
+};
+
+// Every intermediate image of the last frame, every pyramid level (host copies): what the
+// backend parity tests compare stage by stage. Much larger than FrameViews.
 struct FrameImages {
   RadianceImage radiance;
   Image<float> confidence, max_confidence, nr;
@@ -40,42 +49,55 @@ struct FrameImages {
   volume::Volume::Rendering render;
 };
 
+// The stages of one frame, in the order Pipeline::Process calls them. Each stage reads what
+// the stages before it left in the backend (named under "reads") and replaces what it
+// writes; nothing else carries over between frames except the model and the reference.
 class Backend {
  public:
   virtual ~Backend() = default;
-  // 1. Radiance and confidence of the colour; filtered depth.
+  // 1. Reads the frame. Writes the radiance and pixel confidence of the colour, and the
+  // filtered depth.
   virtual void Convert(const ColorImage& color, const DepthImage& depth_m) = 0;
-  // 2. Normalized radiance, and the image and weight the tracker uses (raw intensity and
-  // weight 1 for the brightness-constancy baseline).
-  virtual void Normalize(const ColorImage& color) = 0;
-  // 3. Live pyramid; the tracker's sums against the current reference; live pixels with depth.
+  // 2. Reads the radiance (or, for the brightness-constancy tracker, the colour of stage 1).
+  // Writes the normalized radiance and the image and weight the tracker matches.
+  virtual void Normalize() = 0;
+  // 3. Reads the filtered depth and the tracked image. Writes the live pyramid.
   virtual void BuildLive() = 0;
-  virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_ref, const Pose& T_world_live) = 0;
+  // The tracker's normal equations of the live pyramid at a pose against the reference (at
+  // its own pose); pixels with depth in the live frame; pixels the reference offers.
+  virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_live) = 0;
   virtual long LiveValid() = 0;
-  // Reference pixels with a vertex at the finest level (what the live frame can match).
   virtual long ReferenceValid() = 0;
-  // 4. Exposure ratio of the live frame against the last ray cast.
-  virtual tracking::ExposureEstimate EstimateExposure(const Pose& T_world_live) = 0;
-  // 5. Fuses the live frame at a pose, radiance scaled by `ratio`; allocated bricks after.
+  // 4. Reads the radiance and the last ray cast. The exposure ratio of the live frame.
+  virtual exposure::ExposureEstimate EstimateExposure(const Pose& T_world_live) = 0;
+  // 5. Reads the radiance, confidence, NR, filtered depth and finest live normals. Fuses
+  // them at a pose into the model, the radiance scaled by `ratio`.
   virtual void Integrate(const Pose& T_world_camera, float ratio) = 0;
   virtual std::size_t AllocatedBricks() = 0;
   virtual std::size_t LastVisibleBricks() = 0;  // bricks updated by the last Integrate
   virtual std::size_t VolumeBytes() = 0;
-  // 6. Ray casts the model (kept as the last rendering), and makes the tracking reference
-  // from it or from the live frame at a pose.
+  virtual bool VolumeFull() = 0;  // allocation stopped at the memory limit
+  // 6. Ray casts the model from a pose (kept as the last rendering).
   virtual void Raycast(const Pose& T_world_camera) = 0;
+  virtual bool HasRender() const = 0;
+  // The tracking reference, with the pose it belongs to: the last ray cast (frame to model),
+  // or the live pyramid placed at a pose (frame to frame).
   virtual void ReferenceFromRender() = 0;
   virtual void ReferenceFromLive(const Pose& T_world_camera) = 0;
+  virtual bool HasReference() const = 0;
+  virtual Pose ReferencePose() const = 0;
   // Waits for queued work (timing); a no-op on the CPU.
   virtual void Synchronize() {}
 
-  // Host copies for reports, tests and export.
+  // Host copies for reports, views, tests and export.
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;
-  virtual const volume::Volume& HostVolume() = 0;
+  // The whole model as a host volume (on CUDA: a download of every allocated brick).
+  virtual const volume::Volume& DownloadVolume() = 0;
   // The model's surface (marching tetrahedra, mesh_impl.h), extracted where the model lives.
   // `progress(fraction)` returning false cancels: hdrf::Cancelled is thrown.
   virtual mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) = 0;
-  virtual FrameImages Download() = 0;
+  virtual FrameViews DownloadViews() = 0;
+  virtual FrameImages DownloadStages() = 0;
 };
 
 std::unique_ptr<Backend> MakeCpuBackend(const BackendSetup& setup);

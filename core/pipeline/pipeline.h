@@ -1,6 +1,6 @@
 // The per-frame HDRFusion system: convert, normalize, track, compensate exposure, integrate,
-// ray cast. Owns the volume and the tracker state. A plain object with Process(): the CLI
-// calls it directly, the studio will wrap it in a thread.
+// ray cast. A plain object with Process(): ScanSession wraps it for the CLI, the studio (on
+// its own thread), the benchmarks and the experiments.
 #pragma once
 
 #include <functional>
@@ -14,24 +14,14 @@
 #include "common/se3.h"
 #include "imaging/imaging.h"
 #include "mesh/mesh.h"
+#include "pipeline/backend.h"
+#include "pipeline/options.h"
 #include "radiometry/pcf.h"
 #include "radiometry/sensor.h"
 #include "tracking/tracking.h"
 #include "volume/volume.h"
 
 namespace hdrf::pipeline {
-
-class Backend;
-
-struct PipelineOptions {
-  volume::VolumeOptions volume;
-  tracking::TrackerOptions tracker;
-  imaging::NormalizedRadianceOptions nr;
-  int pcf = 1;                  // PCF variant p0..p3 for tracking and fusion (paper: p1 best)
-  bool bilateral = true;        // bilateral filter on depth before tracking
-  Device device = Device::kCpu; // kCuda: the CUDA backend where a GPU is usable, else the CPU
-  void Check() const;           // throws SettingError naming the setting
-};
 
 struct FrameInput {
   ColorImage color;
@@ -44,6 +34,8 @@ struct FrameInput {
 struct StageTimes {
   double convert = 0, normalize = 0, track = 0, compensate = 0, integrate = 0, raycast = 0;
   double total() const { return convert + normalize + track + compensate + integrate + raycast; }
+  StageTimes& operator+=(const StageTimes& o);
+  StageTimes operator/(double n) const;
 };
 
 struct FrameReport {
@@ -57,8 +49,17 @@ struct FrameReport {
   long exposure_samples = 0;
   StageTimes ms;
   std::size_t allocated_bricks = 0;
+  std::size_t visible_bricks = 0;         // bricks this frame updated (0 when not fused)
 };
 
+struct VolumeStats {
+  std::size_t allocated_bricks = 0, bytes = 0;
+  bool full = false;  // allocation stopped at the memory limit
+};
+
+// The per-frame system. Owns the backend (the frame's images, the model and the tracking
+// reference, wherever they are computed) and the camera's pose; a scan's history (poses,
+// reports, timings) is ScanSession's.
 class Pipeline {
  public:
   Pipeline(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor);
@@ -66,21 +67,26 @@ class Pipeline {
 
   FrameReport Process(const FrameInput& frame);
 
-  // The model (a host copy, refreshed on each call after new frames, on the CUDA backend).
-  const volume::Volume& volume() const;
-  std::size_t volume_bytes() const;
-  // The surface, extracted on the device the model lives on; `progress(fraction)` returning
-  // false cancels (throws hdrf::Cancelled).
-  mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) const;
   const PipelineOptions& options() const { return o_; }
   Device device() const { return device_; }  // where the engine actually runs
   // Why the engine runs elsewhere than asked ("" when it runs where asked).
   const std::string& device_note() const { return device_note_; }
   const Pose& pose() const { return pose_; }
   int frames() const { return index_; }
-  // Renders the model from a pose (radiance, normals, depth, NR).
-  volume::Volume::Rendering Render(const Pose& T_world_camera) const;
-  Backend& backend() const;  // the stages, for tests that compare backends
+  VolumeStats volume_stats() const;
+
+  // Copies out of the backend (downloads on CUDA):
+  // the model ray cast from a pose (radiance, normals, depth, NR);
+  volume::Volume::Rendering Render(const Pose& T_world_camera);
+  // the surface, extracted on the device the model lives on; `progress(fraction)` returning
+  // false cancels (throws hdrf::Cancelled);
+  mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {});
+  // what the studio's views show of the last frame;
+  FrameViews DownloadViews();
+  // the whole model (every allocated brick).
+  const volume::Volume& DownloadVolume();
+  // The stages themselves, for the backend parity tests.
+  Backend& backend() { return *backend_; }
 
  private:
   PipelineOptions o_;
@@ -90,13 +96,11 @@ class Pipeline {
   std::unique_ptr<Backend> backend_;
   Device device_ = Device::kCpu;
   std::string device_note_;
+  bool reference_from_model_ = true;       // else the previous tracked frame
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
-  Pose reference_pose_ = Pose::Identity();
   int index_ = 0;
   std::optional<double> first_exposure_ms_;
-  bool have_reference_ = false;
-  bool have_render_ = false;
 };
 
 }  // namespace hdrf::pipeline

@@ -1,4 +1,4 @@
-// Radiometric calibration from an exposure sweep (FORMATS.md): camera response (Debevec &
+// Radiometric calibration from an exposure sweep (docs/formats.md): camera response (Debevec &
 // Malik; Robertson et al.; EMoR basis of Grossberg & Nayar), noise level function, HDR merge.
 //
 // Scale convention: a response is only defined up to one factor per channel. Every fit here

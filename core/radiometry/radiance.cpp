@@ -1,8 +1,10 @@
 #include "radiometry/radiance.h"
 
+#include <array>
 #include <cmath>
 
 #include "common/error.h"
+#include "radiometry/radiance_driver.h"
 
 namespace hdrf::radiometry {
 
@@ -23,6 +25,30 @@ void ConvertToRadiance(const ColorImage& color, const InverseResponse& inverse, 
   } else {
     detail::ConvertToRadianceCpu(color, tables.data(), 1.0f / exposure_ms, out);
   }
+}
+
+void ConvertFrame(const ColorImage& color, const InverseResponse& inv,
+                  const PcfTables& pcf, int k, RadianceImage& radiance,
+                  Image<float>& confidence, Image<float>& max_confidence, Device device) {
+  if (k < 0 || k > 3) throw SettingError("pcf", "must be 0, 1, 2 or 3 (p0..p3)");
+  const int w = color.width(), h = color.height();
+  if (radiance.width() != w || radiance.height() != h) radiance = RadianceImage(w, h);
+  if (confidence.width() != w || confidence.height() != h) confidence = Image<float>(w, h);
+  if (max_confidence.width() != w || max_confidence.height() != h) max_confidence = Image<float>(w, h);
+  const auto inverse = inv.Flat();
+  std::array<float, 3 * 256> p{};
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 256; ++i) p[std::size_t(c * 256 + i)] = pcf[k][c][i];
+  if (device == Device::kCuda) {
+#if HDRF_HAS_CUDA
+    detail::ConvertFrameCuda(color, inverse.data(), p.data(), radiance, confidence, max_confidence);
+    return;
+#else
+    ThrowNoCudaBackend();
+#endif
+  }
+  ConvertFrameViews(par::Host{}, View(color), inverse.data(), p.data(), View(radiance), View(confidence),
+                    View(max_confidence));
 }
 
 }  // namespace hdrf::radiometry

@@ -1,11 +1,14 @@
 #include "tracking/tracking.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
 #include "imaging/imaging.h"
+#include "tracking/pyramid_driver.h"
 
 namespace hdrf::tracking {
 
@@ -14,7 +17,7 @@ TrackerKind ParseTrackerKind(const std::string& s) {
   if (s == "nr+icp") return TrackerKind::kNrIcp;
   if (s == "icp") return TrackerKind::kIcp;
   if (s == "intensity") return TrackerKind::kIntensity;
-  throw SettingError("--tracker", "unknown tracker '" + s + "'; choose nr, nr+icp, icp or intensity");
+  throw SettingError("tracker.kind", "unknown tracker '" + s + "'; choose nr, nr+icp, icp or intensity");
 }
 
 const char* TrackerName(TrackerKind k) {
@@ -31,47 +34,38 @@ void TrackerOptions::Check() const {
   if (levels < 1 || levels > 4) throw SettingError("tracker.levels", "must be 1 to 4");
   for (int i = 0; i < levels; ++i)
     if (iterations[std::size_t(i)] < 0) throw SettingError("tracker.iterations", "must be >= 0");
-  if (!(icp_sigma_m > 0) || !(photo_sigma > 0) || !(huber_k > 0))
-    throw SettingError("tracker.sigma", "residual scales and the Huber threshold must be > 0");
+  if (!(icp_sigma_m > 0)) throw SettingError("tracker.icp_sigma_m", "must be > 0");
+  if (!(photo_sigma > 0)) throw SettingError("tracker.photo_sigma", "must be > 0");
+  if (!(huber_k > 0)) throw SettingError("tracker.huber_k", "must be > 0");
+  if (!(icp_max_dist_m > 0)) throw SettingError("tracker.icp_max_dist_m", "must be > 0");
+  if (!(icp_max_angle_deg > 0 && icp_max_angle_deg <= 90))
+    throw SettingError("tracker.icp_max_angle_deg", "must be in (0, 90] degrees");
+  if (!(min_inlier_share >= 0 && min_inlier_share <= 1))
+    throw SettingError("tracker.min_inlier_share", "must be in [0, 1]");
+  if (!(max_condition > 1)) throw SettingError("tracker.max_condition", "must be > 1");
+  if (!(max_jump_m > 0)) throw SettingError("tracker.max_jump_m", "must be > 0");
+  if (!(max_jump_deg > 0 && max_jump_deg <= 180)) throw SettingError("tracker.max_jump_deg", "must be in (0, 180]");
 }
 
 namespace {
 
-Image<float> GradX(const Image<float>& im) {
-  Image<float> g(im.width(), im.height());
-  for (int y = 0; y < im.height(); ++y)
-    for (int x = 0; x < im.width(); ++x) g(x, y) = imaging::GradXPixel(View(im), x, y);
-  return g;
-}
-Image<float> GradY(const Image<float>& im) {
-  Image<float> g(im.width(), im.height());
-  for (int y = 0; y < im.height(); ++y)
-    for (int x = 0; x < im.width(); ++x) g(x, y) = imaging::GradYPixel(View(im), x, y);
-  return g;
-}
-template <typename T>
-Image<T> Subsample(const Image<T>& im) {
-  Image<T> out(im.width() / 2, im.height() / 2);
-  for (int y = 0; y < out.height(); ++y)
-    for (int x = 0; x < out.width(); ++x) out(x, y) = im(2 * x, 2 * y);
-  return out;
-}
-
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
-// Sums a per-pixel term over a w x h grid on the CPU threads.
+// Sums a per-pixel term over a w x h grid on the CPU threads: each thread sums its own rows
+// (a static schedule), and the partial sums are added in thread order, so the result is the
+// same on every run with the same number of threads.
 template <typename Term>
 void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
+  std::vector<GnSystem> partial(static_cast<std::size_t>(omp_get_max_threads()));
 #pragma omp parallel
   {
-    GnSystem local;
-#pragma omp for schedule(static) nowait
+    GnSystem& local = partial[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) term(x, y, local);
-#pragma omp critical
-    acc.Merge(local);
   }
+  for (const GnSystem& p : partial) acc.Merge(p);
 }
 
 }  // namespace
@@ -134,28 +128,28 @@ GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const 
 }
 
 Live MakeLive(const DepthImage& depth, const Image<float>& intensity, const Image<float>& weight,
-              const PinholeCamera& cam, int levels) {
+              const PinholeCamera& cam, int levels, float max_normal_jump_m) {
   Live live;
-  DepthImage d = depth.Clone();
-  Image<float> in = intensity.Clone(), wt = weight.Clone();
   PinholeCamera c = cam;
   for (int l = 0; l < levels; ++l) {
     LiveLevel L;
     L.cam = c;
-    L.vertex_c = imaging::VertexMap(d, c);
-    L.normal_c = imaging::NormalMap(L.vertex_c);
-    L.grad_x = GradX(in);
-    L.grad_y = GradY(in);
-    L.intensity = in.Clone();
-    L.weight = wt.Clone();
+    L.depth = l == 0 ? depth.Clone() : DepthImage(c.width, c.height);
+    L.intensity = l == 0 ? intensity.Clone() : Image<float>(c.width, c.height);
+    L.weight = l == 0 ? weight.Clone() : Image<float>(c.width, c.height);
+    L.grad_x = Image<float>(c.width, c.height);
+    L.grad_y = Image<float>(c.width, c.height);
+    L.vertex_c = Image<Float3>(c.width, c.height);
+    L.normal_c = Image<Float3>(c.width, c.height);
     live.levels.push_back(std::move(L));
-    if (l + 1 < levels) {
-      d = imaging::DownsampleDepth(d);
-      in = imaging::Downsample(in);
-      wt = imaging::Downsample(wt);
-      c = c.Scaled(2);
-    }
+    c = c.Scaled(2);
   }
+  std::vector<LiveLevelViews> views;
+  for (LiveLevel& L : live.levels)
+    views.push_back({L.cam, View(L.depth), View(L.intensity), View(L.weight), View(L.grad_x), View(L.grad_y),
+                     View(L.vertex_c), View(L.normal_c)});
+  for (std::size_t l = 0; l < views.size(); ++l)
+    BuildLiveLevel(par::Host{}, l > 0 ? &views[l - 1] : nullptr, views[l], max_normal_jump_m);
   return live;
 }
 
@@ -164,12 +158,14 @@ Reference MakeReference(const Image<Float3>& vertex_w, const Image<Float3>& norm
                         const Pose& T_world_camera) {
   Reference ref;
   ref.T_world_camera = T_world_camera;
-  ReferenceLevel L0{cam, vertex_w.Clone(), normal_w.Clone(), intensity.Clone()};
-  ref.levels.push_back(std::move(L0));
+  ref.levels.push_back({cam, vertex_w.Clone(), normal_w.Clone(), intensity.Clone()});
   for (int l = 1; l < levels; ++l) {
-    const ReferenceLevel& p = ref.levels.back();
-    ReferenceLevel L{p.cam.Scaled(2), Subsample(p.vertex_w), Subsample(p.normal_w),
-                     imaging::Downsample(p.intensity)};
+    ReferenceLevel& p = ref.levels.back();
+    const PinholeCamera c = p.cam.Scaled(2);
+    ReferenceLevel L{c, Image<Float3>(c.width, c.height), Image<Float3>(c.width, c.height),
+                     Image<float>(c.width, c.height)};
+    BuildReferenceLevel(par::Host{}, {p.cam, View(p.vertex_w), View(p.normal_w), View(p.intensity)},
+                        {L.cam, View(L.vertex_w), View(L.normal_w), View(L.intensity)});
     ref.levels.push_back(std::move(L));
   }
   return ref;
@@ -243,41 +239,6 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
     res.why = "pose jumped implausibly far";
   }
   return res;
-}
-
-ExposureEstimate EstimateExposureRatio(const Image<Float3>& model_vertex_w,
-                                       const RadianceImage& model_radiance,
-                                       const RadianceImage& live_radiance,
-                                       const Image<float>& live_conf, const PinholeCamera& cam,
-                                       const Pose& T_world_live) {
-  const ExposureArgs a{View(model_vertex_w), View(model_radiance), View(live_radiance),
-                       View(live_conf), cam, ToRigidTransform(T_world_live.inverse())};
-  std::vector<std::pair<float, float>> samples;  // (log ratio, weight)
-  for (int y = 0; y < model_vertex_w.height(); y += 2)
-    for (int x = 0; x < model_vertex_w.width(); x += 2) {
-      float lr, w;
-      if (ExposureSample(a, x, y, &lr, &w)) samples.emplace_back(lr, w);
-    }
-  return WeightedMedianRatio(samples);
-}
-
-ExposureEstimate WeightedMedianRatio(std::vector<std::pair<float, float>>& samples) {
-  ExposureEstimate e;
-  e.samples = long(samples.size());
-  if (samples.size() < 50) return e;
-  std::sort(samples.begin(), samples.end());
-  double total = 0;
-  for (auto& s : samples) total += s.second;
-  double acc = 0;
-  for (auto& s : samples) {
-    acc += s.second;
-    if (acc >= 0.5 * total) {
-      e.ratio = std::exp(double(s.first));
-      break;
-    }
-  }
-  e.valid = true;
-  return e;
 }
 
 }  // namespace hdrf::tracking

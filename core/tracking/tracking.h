@@ -72,6 +72,7 @@ struct Reference {
 // One pyramid level of the live frame.
 struct LiveLevel {
   PinholeCamera cam;
+  DepthImage depth;                  // metres (halved from the level above)
   Image<Float3> vertex_c, normal_c;  // camera frame
   Image<float> intensity, grad_x, grad_y;
   Image<float> weight;               // PCF confidence (1 for the baseline)
@@ -81,9 +82,10 @@ struct Live {
   std::vector<LiveLevel> levels;  // finest first
 };
 
-// Builds pyramid levels: depth halved by DownsampleDepth, intensity and weight by 2x2 means.
+// Builds pyramid levels: depth halved by DownsampleDepth, intensity and weight by 2x2 means;
+// normals undefined across depth jumps above max_normal_jump_m.
 Live MakeLive(const DepthImage& depth_m, const Image<float>& intensity, const Image<float>& weight,
-              const PinholeCamera& cam, int levels);
+              const PinholeCamera& cam, int levels, float max_normal_jump_m = 0.1f);
 Reference MakeReference(const Image<Float3>& vertex_w, const Image<Float3>& normal_w,
                         const Image<float>& intensity, const PinholeCamera& cam, int levels,
                         const Pose& T_world_camera);
@@ -118,22 +120,5 @@ PhotoArgs MakePhotoArgs(const ReferenceView& ref, const LiveView& live, const Po
                         const TrackerOptions& o);
 GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
                        const Pose& T_world_live, const TrackerOptions& o);
-
-// Exposure ratio t of the live frame against the model (model radiance = t * live
-// radiance): the confidence-weighted median over matched pixels of the luminance ratio,
-// leaving out saturated or black live pixels and pixels without model radiance.
-struct ExposureEstimate {
-  double ratio = 1;
-  long samples = 0;
-  bool valid = false;
-};
-ExposureEstimate EstimateExposureRatio(const Image<Float3>& model_vertex_w,
-                                       const RadianceImage& model_radiance,
-                                       const RadianceImage& live_radiance,
-                                       const Image<float>& live_confidence,
-                                       const PinholeCamera& cam, const Pose& T_world_live);
-// The confidence-weighted median of (log ratio, weight) samples (sorted in place); invalid
-// below 50 samples.
-ExposureEstimate WeightedMedianRatio(std::vector<std::pair<float, float>>& samples);
 
 }  // namespace hdrf::tracking

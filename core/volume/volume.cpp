@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "volume/raycast_driver.h"
 
 namespace hdrf::volume {
 
@@ -11,7 +12,7 @@ VoxelEncoding ParseVoxelEncoding(const std::string& s) {
   if (s == "full") return VoxelEncoding::kFull;
   if (s == "no-nr") return VoxelEncoding::kNoNr;
   if (s == "compact") return VoxelEncoding::kCompact;
-  throw SettingError("--voxel", "unknown voxel encoding '" + s + "'; choose full, no-nr or compact");
+  throw SettingError("volume.voxel", "unknown voxel encoding '" + s + "'; choose full, no-nr or compact");
 }
 const char* VoxelEncodingName(VoxelEncoding e) {
   switch (e) {
@@ -24,24 +25,28 @@ const char* VoxelEncodingName(VoxelEncoding e) {
 
 void VolumeOptions::Check() const {
   if (resolution < 8 || resolution % 8 != 0)
-    throw SettingError("--volume-res", "must be a positive multiple of 8, got " + std::to_string(resolution));
+    throw SettingError("volume.resolution", "must be a positive multiple of 8, got " + std::to_string(resolution));
   if (resolution > 4096)
-    throw SettingError("--volume-res", std::to_string(resolution) + " is more than 4096 voxels per side");
+    throw SettingError("volume.resolution", std::to_string(resolution) + " is more than 4096 voxels per side");
   if (!(size_m > 0) || !std::isfinite(size_m))
-    throw SettingError("--volume-size", "must be a positive number of metres");
-  if (!(truncation_voxels >= 1)) throw SettingError("truncation_voxels", "must be >= 1");
-  if (!(max_weight > 0) || !(max_radiance_weight > 0)) throw SettingError("max_weight", "must be > 0");
+    throw SettingError("volume.size_m", "must be a positive number of metres");
+  if (!(truncation_voxels >= 1)) throw SettingError("volume.truncation_voxels", "must be >= 1");
+  if (!(max_weight > 0)) throw SettingError("volume.max_weight", "must be > 0");
+  if (!(max_radiance_weight > 0)) throw SettingError("volume.max_radiance_weight", "must be > 0");
   if (encoding == VoxelEncoding::kCompact && (max_weight > 65 || max_radiance_weight > 65))
-    throw SettingError("max_weight", "compact voxels hold weights up to 65; lower the cap or use --voxel full");
-  if (!(tau1_deg > 0 && tau1_deg <= 90)) throw SettingError("--tau1", "must be in (0, 90] degrees");
-  if (!(tau0 >= 0 && tau0 < 1)) throw SettingError("--tau0", "must be in [0, 1)");
+    throw SettingError(max_weight > 65 ? "volume.max_weight" : "volume.max_radiance_weight",
+                       "compact voxels hold weights up to 65; lower the cap or use volume.voxel full");
+  if (!(tau1_deg > 0 && tau1_deg <= 90)) throw SettingError("volume.tau1_deg", "must be in (0, 90] degrees");
+  if (!(tau0 >= 0 && tau0 < 1)) throw SettingError("volume.tau0", "must be in [0, 1)");
+  if (!(raycast_near_m > 0) || !(raycast_far_m > raycast_near_m) || !std::isfinite(raycast_far_m))
+    throw SettingError("volume.raycast_far_m", "ray casting needs 0 < near < far (finite metres)");
   const double nb = resolution / 8.0;
   const double index_mb = nb * nb * nb * 4.0 / (1024.0 * 1024.0);
   const double brick_mb = 512.0 * EncodingBytes(encoding) / (1024.0 * 1024.0);
   if (index_mb + 64 * brick_mb > max_memory_mb)
-    throw SettingError("--volume-res", "a " + std::to_string(resolution) + "^3 volume needs " +
+    throw SettingError("volume.resolution", "a " + std::to_string(resolution) + "^3 volume needs " +
                                            std::to_string(int(index_mb)) + " MiB for its brick index alone, more than the " +
-                                           std::to_string(int(max_memory_mb)) + " MiB allowed (max_memory_mb)");
+                                           std::to_string(int(max_memory_mb)) + " MiB allowed (volume.max_memory_mb)");
 }
 
 Volume::Volume(const VolumeOptions& o) : o_(o) {
@@ -183,8 +188,7 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   return st;
 }
 
-Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, float near_m,
-                                  float far_m) const {
+Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc) const {
   Rendering r;
   const int w = cam.width, h = cam.height;
   r.vertex = Image<Float3>(w, h);
@@ -192,20 +196,9 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, fl
   r.radiance = RadianceImage(w, h);
   r.nr = Image<float>(w, h);
   r.depth = DepthImage(w, h);
-  const RaycastArgs a{cam, ToRigidTransform(T_wc), near_m, far_m};
-  VisitEncoding(o_.encoding, [&](auto tag) {
-    const VolumeView<decltype(tag)> V = view<decltype(tag)>();
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const RayHit hit = RaycastPixel(V, a, x, y);
-        r.vertex(x, y) = hit.vertex;
-        r.normal(x, y) = hit.normal;
-        r.radiance(x, y) = hit.radiance;
-        r.nr(x, y) = hit.nr;
-        r.depth(x, y) = hit.depth;
-      }
-  });
+  const RaycastArgs a{cam, ToRigidTransform(T_wc), o_.raycast_near_m, o_.raycast_far_m};
+  const RenderingViews out{View(r.vertex), View(r.normal), View(r.radiance), View(r.nr), View(r.depth)};
+  VisitEncoding(o_.encoding, [&](auto tag) { RaycastInto(par::Host{}, view<decltype(tag)>(), a, out); });
   return r;
 }
 

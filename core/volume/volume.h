@@ -29,10 +29,12 @@ struct VolumeOptions {
   float tau0 = 0.1f;             // radiance fused only where the largest channel PCF > tau0
   float tau1_deg = 75;           // ... and the angle between normal and view ray < tau1
   double max_memory_mb = 4096;   // voxel memory the volume may use
-  // Voxel storage (volume_impl.h, --voxel): compact by default, as accurate as full on the
+  float raycast_near_m = 0.2f;   // ray casting starts this far from the camera ...
+  float raycast_far_m = 8.0f;    // ... and gives up this far
+  // Voxel storage (volume_impl.h, volume.voxel): compact by default, as accurate as full on the
   // engine's tests at 12 instead of 28 bytes (docs/benchmarks.md).
   VoxelEncoding encoding = VoxelEncoding::kCompact;
-  void Check() const;            // throws SettingError naming --volume-res / --volume-size
+  void Check() const;            // throws SettingError naming the setting (volume.*)
   float voxel_m() const { return size_m / float(resolution); }
   float truncation_m() const { return truncation_voxels * voxel_m(); }
 };
@@ -77,7 +79,7 @@ class Volume {
   }
   int voxel_bytes() const { return EncodingBytes(o_.encoding); }
 
-  // Integration of one frame (see integrate.cpp).
+  // Integration of one frame (volume.cpp; per voxel: IntegrateVoxel in volume_impl.h).
   struct FrameInput {
     const DepthImage* depth_m;
     const Image<Float3>* normals;       // camera frame, for w_F = |n.v|
@@ -94,7 +96,7 @@ class Volume {
   };
   IntegrateStats Integrate(const FrameInput& in);
 
-  // Ray casting from a pose (see raycast.cpp): per pixel world vertex, world normal,
+  // Ray casting from a pose (per pixel: RaycastPixel in volume_impl.h): world vertex, world normal,
   // radiance, NR and camera depth; zero where the ray hit nothing.
   struct Rendering {
     Image<Float3> vertex, normal;
@@ -102,8 +104,7 @@ class Volume {
     Image<float> nr;
     DepthImage depth;
   };
-  Rendering Raycast(const PinholeCamera& cam, const Pose& T_world_camera, float near_m = 0.2f,
-                    float far_m = 8.0f) const;
+  Rendering Raycast(const PinholeCamera& cam, const Pose& T_world_camera) const;
 
   // Voxel coordinates of allocated bricks (for meshing).
   const std::vector<std::array<int, 3>>& bricks() const { return brick_coord_; }

@@ -68,7 +68,7 @@ TEST_F(ScanAccuracy, NormalizedRadianceAndIcpBeatBrightnessConstancy) {
   const double voxel = rep_nricp["options"]["volume"]["size_m"].get<double>() /
                        rep_nricp["options"]["volume"]["resolution"].get<double>();
   EXPECT_LE(nricp["mesh_median_distance_m"].get<double>(), 0.5 * voxel);
-  // Outputs as FORMATS.md says.
+  // Outputs as docs/formats.md says.
   const fs::path out = dir_->path() / "scan_nr+icp";
   for (const char* f : {"trajectory.txt", "mesh.ply", "render_last.exr", "render_last.png", "render_first.png", "report.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -101,13 +101,21 @@ TEST(ScanErrors, MissingCalibrationBadSettingsAndOptionFiles) {
   // Impossible settings.
   r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --volume-size 0");
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.output.find("--volume-size"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'volume.size_m'"), std::string::npos) << r.output;
   r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --volume-res 100");
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.output.find("--volume-res"), std::string::npos) << r.output;
-  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --volume-res 8192");
+  EXPECT_NE(r.output.find("'volume.resolution': must be a positive multiple of 8"), std::string::npos) << r.output;
+  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --volume.resolution 8192");
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.output.find("more than 4096"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'volume.resolution': 8192 is out of range (8 .. 4096 voxels)"), std::string::npos)
+      << r.output;
+  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --tracker.kind orb");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("'tracker.kind': 'orb' is not one of nr+icp, nr, icp, intensity"), std::string::npos)
+      << r.output;
+  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --nr.patch seven");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("'nr.patch': 'seven' is not a number"), std::string::npos) << r.output;
   r = RunCli("scan synthetic:scene=castle --out " + (dir / "o3").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("castle"), std::string::npos) << r.output;
@@ -116,6 +124,11 @@ TEST(ScanErrors, MissingCalibrationBadSettingsAndOptionFiles) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("opts.json"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("volume.resolutoin"), std::string::npos) << r.output;
+  // Wrong types in a settings file are refused naming the file and the key.
+  test::WriteText(dir / "opts.json", R"({"volume": {"resolution": "big"}})");
+  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --options " + (dir / "opts.json").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("opts.json: 'volume.resolution' must be a whole number"), std::string::npos) << r.output;
   // A frame that goes missing midway: the model so far is kept, the error is reported.
   fs::remove(dir / "seq" / "rgb" / (std::string("1.133333") + ".png"));
   r = RunCli("scan " + seq + " --out " + (dir / "o4").string() + " --response srgb --volume-res 64 --volume-size 8");

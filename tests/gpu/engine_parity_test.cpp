@@ -112,7 +112,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     EXPECT_EQ(rc.tracking.lost, rg.tracking.lost);
     EXPECT_NEAR(rc.exposure_ratio, rg.exposure_ratio, 1e-4 * rc.exposure_ratio) << "frame " << k;
     EXPECT_EQ(rc.allocated_bricks, rg.allocated_bricks) << "frame " << k;
-    const FrameImages a = cpu.backend().Download(), b = gpu.backend().Download();
+    const FrameImages a = cpu.backend().DownloadStages(), b = gpu.backend().DownloadStages();
     const Diff d_rad = Compare3(a.radiance, b.radiance), d_conf = CompareF(a.confidence, b.confidence);
     const Diff d_depth = CompareF(a.depth, b.depth), d_nr = CompareF(a.nr, b.nr);
     std::printf("frame %d parity (max diff / max value): radiance %.2g confidence %.2g depth %.2g nr %.2g\n", k,
@@ -143,8 +143,8 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
                 100 * rv.share, rr.rel, rd.rel);
     EXPECT_LE(rd.share, 0.002) << "hit/miss or depth differs on more than 0.2 % of pixels";
     // Volumes: voxel by voxel over the same bricks.
-    const volume::Volume& vc = cpu.volume();
-    const volume::Volume& vg = gpu.volume();
+    const volume::Volume& vc = cpu.DownloadVolume();
+    const volume::Volume& vg = gpu.DownloadVolume();
     ASSERT_EQ(vc.allocated_bricks(), vg.allocated_bricks());
     double tsdf = 0, weight = 0, rad = 0, rad_scale = 1e-30;
     long missing = 0;
@@ -189,7 +189,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     if (k > 0) {
       const Pose T = rc.T_world_camera;
       for (int l = 0; l < o.tracker.levels; ++l) {
-        const tracking::GnSystem ga = cpu.backend().Accumulate(l, T, T), gb = gpu.backend().Accumulate(l, T, T);
+        const tracking::GnSystem ga = cpu.backend().Accumulate(l, T), gb = gpu.backend().Accumulate(l, T);
         double worst = 0, scale = 1e-30;
         for (int i = 0; i < tracking::GnSystem::kSize; ++i) {
           scale = std::max(scale, std::abs(ga.v[i]));

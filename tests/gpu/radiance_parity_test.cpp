@@ -52,11 +52,10 @@ TEST(GpuParity, RadianceConversionMatchesCpu) {
 }  // namespace
 }  // namespace hdrf::radiometry
 
-#include "imaging/imaging.h"
 #include "radiometry/pcf.h"
 #include "sim/builtin_sensor.h"
 
-namespace hdrf::imaging {
+namespace hdrf::radiometry {
 namespace {
 
 TEST(GpuParity, FrameConversionRadianceAndConfidenceMatchCpu) {
@@ -86,4 +85,4 @@ TEST(GpuParity, FrameConversionRadianceAndConfidenceMatchCpu) {
 }
 
 }  // namespace
-}  // namespace hdrf::imaging
+}  // namespace hdrf::radiometry

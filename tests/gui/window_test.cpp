@@ -1,5 +1,5 @@
 // The studio window and the studio program on a real X server (Xvfb): QOpenGLWidget and VTK
-// need one (PLATFORM_NOTES: the offscreen platform cannot host them). Without DISPLAY this
+// need one (Qt's offscreen platform cannot host them). Without DISPLAY this
 // binary re-runs itself under xvfb-run; where xvfb-run is missing the tests skip with a message.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace radiometry;
 
-// The memorial images arranged as a FORMATS.md sweep; returns the folder.
+// The memorial images arranged as a sweep (docs/formats.md); returns the folder.
 fs::path MakeMemorialSweep(const fs::path& src, const fs::path& dir,
                            std::vector<std::pair<std::string, double>>* list) {
   std::ifstream in(src / "exposures.txt");

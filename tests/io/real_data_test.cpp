@@ -1,4 +1,4 @@
-// Real RGB-D frames from ../shared/data (see its SOURCES.md); skipped where absent.
+// Real RGB-D frames from the shared data folder (../shared/data); skipped where absent.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -22,7 +22,7 @@ TEST(RealData, SevenScenesFramesDecode) {
   double mean = 0;
   for (std::size_t i = 0; i < c.size(); ++i) mean += (c[i].r + c[i].g + c[i].b) / 3.0;
   mean /= double(c.size());
-  EXPECT_GT(mean, 100.0);  // SOURCES.md: mean grey 114.9 .. 125.2 over the 50 frames
+  EXPECT_GT(mean, 100.0);  // the recording: mean grey 114.9 .. 125.2 over the 50 frames
   EXPECT_LT(mean, 135.0);
   const DepthImage d = DepthToMetres(ReadDepthImage(dir / "frame-000150.depth.png"), 1000.0);
   std::size_t valid = 0;
@@ -34,7 +34,7 @@ TEST(RealData, SevenScenesFramesDecode) {
       hi = std::max(hi, d[i]);
     }
   const double coverage = double(valid) / double(d.size());
-  EXPECT_GT(coverage, 0.85);  // 7.6 .. 13.7 % invalid per SOURCES.md
+  EXPECT_GT(coverage, 0.85);  // the recording has 7.6 .. 13.7 % invalid depth
   EXPECT_LT(coverage, 0.93);
   EXPECT_GT(lo, 0.9f);
   EXPECT_LT(hi, 3.0f);
@@ -86,7 +86,7 @@ TEST(RealData, TumKinectFrameDepthRange) {
     lo = std::min(lo, d[i]);
     hi = std::max(hi, d[i]);
   }
-  EXPECT_NEAR(double(zeros) / double(d.size()), 0.19, 0.02);  // SOURCES.md: 19 % zeros
+  EXPECT_NEAR(double(zeros) / double(d.size()), 0.19, 0.02);  // the recording: 19 % zeros
   EXPECT_NEAR(lo, 1.46, 0.02);
   EXPECT_NEAR(hi, 9.3, 0.1);
 }

@@ -40,6 +40,42 @@ TEST(SensorJson, ReadsMinimalAndIgnoresUnknownKeys) {
   EXPECT_FALSE(s.noise.has_value());
 }
 
+// Other generators write their own blocks, some under a name this project also uses: such a
+// sequence is read (with a warning naming the file), never refused. The project's own keys
+// live under "hdrfusion" and round-trip; the layout older versions wrote is still read.
+TEST(SensorJson, ForeignBlocksAreIgnoredAndOwnKeysLiveUnderOneName) {
+  TempDir dir;
+  const std::string camera = R"("camera": {"width": 64, "height": 48, "fx": 50, "fy": 50, "cx": 31.5, "cy": 23.5},
+                                 "depth": {"scale": 1000})";
+  WriteText(dir / "foreign.json", "{" + camera + R"(, "synthetic": {"renderer": "blender", "noise": true}})");
+  const SensorInfo foreign = ReadSensorJson(dir / "foreign.json");
+  EXPECT_FALSE(foreign.synthetic.has_value());
+  ASSERT_EQ(foreign.warnings.size(), 1u);
+  EXPECT_NE(foreign.warnings[0].find("foreign.json"), std::string::npos) << foreign.warnings[0];
+  EXPECT_NE(foreign.warnings[0].find("'synthetic'"), std::string::npos) << foreign.warnings[0];
+  WriteText(dir / "odd.json", "{" + camera + R"(, "synthetic": "yes"})");
+  EXPECT_EQ(ReadSensorJson(dir / "odd.json").warnings.size(), 1u);
+
+  SensorInfo own;
+  own.camera = {64, 48, 50, 50, 31.5f, 23.5f};
+  own.synthetic = SensorInfo::Synthetic{"desk", 7};
+  WriteSensorJson(dir / "own.json", own);
+  EXPECT_NE(test::ReadText(dir / "own.json").find("\"hdrfusion\""), std::string::npos);
+  const SensorInfo back = ReadSensorJson(dir / "own.json");
+  ASSERT_TRUE(back.synthetic.has_value());
+  EXPECT_EQ(back.synthetic->scene, "desk");
+  EXPECT_EQ(back.synthetic->seed, 7u);
+  EXPECT_TRUE(back.warnings.empty());
+
+  WriteText(dir / "legacy.json", "{" + camera + R"(, "synthetic": {"scene": "room", "seed": 3}})");
+  const SensorInfo legacy = ReadSensorJson(dir / "legacy.json");
+  ASSERT_TRUE(legacy.synthetic.has_value());
+  EXPECT_EQ(legacy.synthetic->seed, 3u);
+
+  WriteText(dir / "bad_own.json", "{" + camera + R"(, "hdrfusion": {"synthetic": {"scene": 1}}})");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "bad_own.json"); }, {"bad_own.json", "hdrfusion.synthetic"});
+}
+
 TEST(SensorJson, RoundTripWithResponseAndNoise) {
   TempDir dir;
   SensorInfo s;

@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "common/error.h"
-#include "eval/calibration_accuracy.h"
+#include "eval/response_error.h"
+#include "response_curves.h"
+#include "sim/sweep_simulator.h"
 #include "radiometry/calibration.h"
 #include "radiometry/pcf.h"
 #include "sim/builtin_sensor.h"
@@ -17,9 +19,9 @@
 namespace hdrf::radiometry {
 namespace {
 
-using eval::SimulateSweep;
+using sim::SimulateSweep;
 
-const NoiseModel& kTestNoise = eval::kSweepNoise;
+const NoiseModel& kTestNoise = sim::kSweepNoise;
 
 InverseResponse Normalised(InverseResponse r) {
   ScaleToUnitAt128(r);
@@ -27,7 +29,7 @@ InverseResponse Normalised(InverseResponse r) {
 }
 
 InverseResponse DorfTriplet(const std::vector<std::vector<double>>& rows, int k_r, int k_g, int k_b) {
-  return eval::InverseFromCurves({&rows.at(std::size_t(k_r)), &rows.at(std::size_t(k_g)), &rows.at(std::size_t(k_b))});
+  return experiments::InverseFromCurves({&rows.at(std::size_t(k_r)), &rows.at(std::size_t(k_g)), &rows.at(std::size_t(k_b))});
 }
 
 // The target is 1 % of full range over levels 5..250 (CompareResponse, after one scale per
@@ -73,7 +75,7 @@ TEST(Calibration, RecoversTheXtionResponse) {
 TEST(Calibration, RecoversDorfResponses) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
-  const auto rows = eval::LoadDorfInverseCurves(file);
+  const auto rows = experiments::LoadDorfInverseCurves(file);
   ASSERT_EQ(rows.size(), 201u);
   for (std::array<int, 3> k : {std::array{0, 3, 7}, std::array{57, 60, 64}, std::array{123, 126, 130},
                                std::array{190, 193, 197}, std::array{165, 171, 159}}) {
@@ -88,7 +90,7 @@ TEST(Calibration, RecoversDorfResponses) {
 TEST(Calibration, ThresholdRefinementRemovesTheSceneHistogramPull) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
-  const auto rows = eval::LoadDorfInverseCurves(file);
+  const auto rows = experiments::LoadDorfInverseCurves(file);
   const InverseResponse truth = DorfTriplet(rows, 169, 170, 171);
   const Sweep s = SimulateSweep(truth, kTestNoise, 2, 160, 120, "desk");
   RobertsonOptions classic_r, refined_r;
@@ -111,7 +113,7 @@ TEST(Calibration, ThresholdRefinementRemovesTheSceneHistogramPull) {
 TEST(Calibration, RecoversBorealHdrMeasuredResponse) {
   const auto file = test::SharedData("camera_response_measured/borealhdr_pcalib_inside1.txt");
   HDRF_SKIP_WITHOUT(file, "camera_response_measured/borealhdr_pcalib_inside1.txt");
-  const InverseResponse truth = eval::LoadPcalibResponse(file);
+  const InverseResponse truth = experiments::LoadPcalibResponse(file);
   CheckMethods(truth, "borealhdr", false);
   // A machine-vision response outside the EMoR basis: the fit misses 1 % and the
   // basis-gap warning of `calibrate` says so.
@@ -151,15 +153,15 @@ TEST(Calibration, ResponseAccuracyFigures) {
 TEST(Calibration, DorfFileErrorsNamed) {
   test::TempDir dir;
   test::WriteText(dir / "short.txt", "# comment\n0 0.5 1\n");
-  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "short.txt"); },
+  test::ExpectErrorContaining([&] { experiments::LoadDorfInverseCurves(dir / "short.txt"); },
                               {"short.txt:2", "3 values, expected 1024"});
   std::string bad;
   for (int j = 0; j < 1024; ++j) bad += j == 7 ? "x " : "0.5 ";
   test::WriteText(dir / "bad.txt", bad + "\n");
-  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "bad.txt"); }, {"bad.txt", "'x'"});
-  test::ExpectErrorContaining([&] { eval::LoadDorfInverseCurves(dir / "none.txt"); }, {"none.txt", "missing"});
+  test::ExpectErrorContaining([&] { experiments::LoadDorfInverseCurves(dir / "bad.txt"); }, {"bad.txt", "'x'"});
+  test::ExpectErrorContaining([&] { experiments::LoadDorfInverseCurves(dir / "none.txt"); }, {"none.txt", "missing"});
   test::WriteText(dir / "pcalib.txt", "0 1 2\n");
-  test::ExpectErrorContaining([&] { eval::LoadPcalibResponse(dir / "pcalib.txt"); },
+  test::ExpectErrorContaining([&] { experiments::LoadPcalibResponse(dir / "pcalib.txt"); },
                               {"pcalib.txt", "3 values, expected 256"});
 }
 
@@ -202,7 +204,7 @@ TEST(Calibration, NoiseLevelFunctionWithinTenPercent) {
 TEST(Calibration, NoiseLevelFunctionOnDorfCurves) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
-  const auto rows = eval::LoadDorfInverseCurves(file);
+  const auto rows = experiments::LoadDorfInverseCurves(file);
   CheckNoise(DorfTriplet(rows, 12, 146, 159), kTestNoise, "dorf 12/146/159");
   CheckNoise(DorfTriplet(rows, 165, 171, 193), kTestNoise, "dorf 165/171/193");
 }
@@ -332,7 +334,7 @@ TEST(Calibration, BadSweepsAreRefusedWithAReason) {
 TEST(Calibration, SteepToeNoiseIsNotMotion) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");
-  const auto rows = eval::LoadDorfInverseCurves(file);
+  const auto rows = experiments::LoadDorfInverseCurves(file);
   for (int k : {14, 25})
     EXPECT_NO_THROW(CheckSweep(SimulateSweep(DorfTriplet(rows, k, k + 67, k + 134), kTestNoise))) << k;
 }

@@ -1,0 +1,126 @@
+// The parallel primitives on the GPU (see parallel.h): kernel launches of a per-index or
+// per-pixel lambda, and a deterministic sum of per-pixel contributions. Included by .cu
+// files only.
+#pragma once
+
+#include <algorithm>
+
+#include "common/cuda_check.h"
+#include "common/device_buffer.h"
+#include "common/parallel.h"
+
+namespace hdrf::par {
+
+struct Gpu {};
+
+namespace detail {
+template <typename F>
+__global__ void IndexKernel(int n, F f) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+template <typename F>
+__global__ void PixelKernel(int w, int h, F f) {
+  const int x = blockIdx.x * blockDim.x + threadIdx.x, y = blockIdx.y * blockDim.y + threadIdx.y;
+  if (x < w && y < h) f(x, y);
+}
+}  // namespace detail
+
+template <typename F>
+void ForEach(Gpu, int n, F f) {
+  if (n <= 0) return;
+  detail::IndexKernel<<<(n + 255) / 256, 256>>>(n, f);
+  HDRF_CUDA_CHECK_LAUNCH();
+}
+
+template <typename F>
+void ForEachPixel(Gpu, int w, int h, F f) {
+  if (w <= 0 || h <= 0) return;
+  const dim3 block(32, 8), grid((w + 31) / 32, (h + 7) / 8);
+  detail::PixelKernel<<<grid, block>>>(w, h, f);
+  HDRF_CUDA_CHECK_LAUNCH();
+}
+
+// Sums over the pixels of a w x h grid of what `f(x, y, acc)` adds to an accumulator of K
+// doubles (Acc has `double v[K]`): each thread sums its pixels, warps reduce by shuffles,
+// each block writes one partial, and the last block adds the partials in block order (the
+// same sum on every run, no atomics on the values). The result is read back to the host.
+class Reducer {
+ public:
+  static constexpr int kThreads = 256;
+  static constexpr int kBlocks = 264;
+  explicit Reducer(int max_doubles);
+  ~Reducer();
+  Reducer(const Reducer&) = delete;
+  Reducer& operator=(const Reducer&) = delete;
+
+  template <typename Acc, typename F>
+  Acc Sum(int w, int h, F f);
+
+ private:
+  DeviceBuffer<double> partial_, sums_;
+  DeviceBuffer<unsigned> done_;
+  double* host_ = nullptr;  // pinned
+};
+
+namespace detail {
+template <typename Acc, typename F>
+__global__ void __launch_bounds__(Reducer::kThreads)
+    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
+  constexpr int K = sizeof(Acc::v) / sizeof(double);
+  constexpr int kThreads = Reducer::kThreads;
+  Acc acc;
+  const int n = w * h;
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) f(i % w, i / w, acc);
+  __shared__ double sh[kThreads / 32][K];
+  const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5;
+#pragma unroll
+  for (int k = 0; k < K; ++k) {
+    double v = acc.v[k];
+    for (int off = 16; off > 0; off >>= 1) v += __shfl_down_sync(0xffffffffu, v, off);
+    if (lane == 0) sh[warp][k] = v;
+  }
+  __syncthreads();
+  if (threadIdx.x < K) {
+    double s = 0;
+    for (int wi = 0; wi < kThreads / 32; ++wi) s += sh[wi][threadIdx.x];
+    partial[blockIdx.x * K + threadIdx.x] = s;
+  }
+  // The last block to finish adds the partials, in block order (the same sum every run).
+  __shared__ bool last;
+  __threadfence();
+  __syncthreads();
+  if (threadIdx.x == 0) last = atomicAdd(done, 1u) == gridDim.x - 1;
+  __syncthreads();
+  if (!last) return;
+  __threadfence();
+  if (threadIdx.x < K) {
+    double s = 0;
+    for (int b = 0; b < int(gridDim.x); ++b) s += static_cast<volatile double*>(partial)[b * K + threadIdx.x];
+    out[threadIdx.x] = s;
+  }
+  if (threadIdx.x == 0) *done = 0;  // ready for the next reduction
+}
+}  // namespace detail
+
+inline Reducer::Reducer(int max_doubles)
+    : partial_(std::size_t(kBlocks) * std::size_t(max_doubles)), sums_(std::size_t(max_doubles)), done_(1) {
+  HDRF_CUDA_CHECK(cudaMemset(done_.data(), 0, sizeof(unsigned)));
+  HDRF_CUDA_CHECK(cudaMallocHost(&host_, sizeof(double) * std::size_t(max_doubles)));
+}
+inline Reducer::~Reducer() { cudaFreeHost(host_); }
+
+template <typename Acc, typename F>
+Acc Reducer::Sum(int w, int h, F f) {
+  constexpr int K = sizeof(Acc::v) / sizeof(double);
+  const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
+  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, partial_.data(), done_.data(), sums_.data());
+  HDRF_CUDA_CHECK_LAUNCH();
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(host_, sums_.data(), sizeof(double) * K, cudaMemcpyDeviceToHost, 0));
+  HDRF_CUDA_CHECK(cudaStreamSynchronize(0));
+  Acc out;
+  for (int k = 0; k < K; ++k) out.v[k] = host_[k];
+  return out;
+}
+
+}  // namespace hdrf::par

@@ -1,0 +1,58 @@
+// The normalized-radiance driver, written once for both devices (common/parallel.h): the
+// CPU entry point (normalized_radiance.cpp) runs it with par::Host, the CUDA backend with
+// par::Gpu (normalized_radiance_cuda.cu, which also gives the GPU its own row pass).
+#pragma once
+
+#include "common/parallel.h"
+#include "common/vec.h"
+#include "normalized_radiance/normalized_radiance.h"
+
+namespace hdrf::nr {
+
+// Work images on the down-sampled grid (sw x sh cells, integrals (sw+1) x (sh+1)), on the
+// device the driver runs on.
+struct Scratch {
+  ImageView<float> cells, mean_s, std_s;
+  NrIntegrals in;
+};
+
+// Luminance (Rec. 709) of a radiance image: what normalized radiance is computed on.
+template <typename Device>
+void LuminanceOf(Device d, ImageView<const Float3> radiance, ImageView<float> lum) {
+  par::ForEachPixel(d, radiance.width, radiance.height, HDRF_LAMBDA(int x, int y) { lum(x, y) = hdrf::Luminance(radiance(x, y)); });
+}
+
+// The row pass of the integral images on the CPU: each row is independent.
+inline void RowPasses(par::Host d, ImageView<const float> cells, NrIntegrals in) {
+  par::ForEach(d, cells.height, [=](int y) { NrRowPass(cells, in, y); });
+}
+
+// NR of `lum` into `out`; the up-sampled local mean and std too where those views are
+// non-empty. The row pass is device-specific (RowPasses, found for the device's tag).
+template <typename Device>
+void Normalize(Device d, ImageView<const float> lum, const Scratch& s, const NormalizedRadianceOptions& o,
+               ImageView<float> out, ImageView<float> mean_out = {}, ImageView<float> std_out = {}) {
+  const int f = o.downsample, r = o.patch / 2;
+  const float min_std = o.min_std;
+  const ImageView<float> cells = s.cells, ms = s.mean_s, ss = s.std_s;
+  const NrIntegrals in = s.in;
+  // 1. Cell means, 2. integral images, 3. local statistics on the small grid.
+  par::ForEachPixel(d, cells.width, cells.height, HDRF_LAMBDA(int x, int y) { cells(x, y) = NrCellMean(lum, x, y, f); });
+  RowPasses(d, ImageView<const float>(cells), in);
+  par::ForEach(d, cells.width + 1, HDRF_LAMBDA(int x) { NrColumnPass(in, x); });
+  par::ForEachPixel(d, cells.width, cells.height,
+                    HDRF_LAMBDA(int x, int y) { NrLocalStats(in, x, y, r, &ms(x, y), &ss(x, y)); });
+  // 4. Up-sampled statistics and the normalized value per pixel.
+  const ImageView<const float> msc = ms, ssc = ss;
+  par::ForEachPixel(d, lum.width, lum.height, HDRF_LAMBDA(int x, int y) {
+    NrPixel(lum, msc, ssc, f, min_std, x, y, &out(x, y), mean_out.data ? &mean_out(x, y) : nullptr,
+            std_out.data ? &std_out(x, y) : nullptr);
+  });
+}
+
+// The same drivers on the GPU (normalized_radiance_cuda.cu), over device views.
+void LuminanceOnGpu(ImageView<const Float3> radiance, ImageView<float> lum);
+void NormalizeOnGpu(ImageView<const float> lum, const Scratch& s, const NormalizedRadianceOptions& o,
+                    ImageView<float> out);
+
+}  // namespace hdrf::nr

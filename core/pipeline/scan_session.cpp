@@ -1,0 +1,50 @@
+#include "pipeline/scan_session.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hdrf::pipeline {
+
+ScanSession::ScanSession(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor)
+    : pipeline_(options, camera, sensor) {}
+
+const FrameReport& ScanSession::Process(const FrameInput& frame) {
+  reports_.push_back(pipeline_.Process(frame));
+  const FrameReport& r = reports_.back();
+  total_ms_ += r.ms;
+  lost_ += r.tracking.lost;
+  return r;
+}
+
+std::vector<Pose> ScanSession::poses() const {
+  std::vector<Pose> p;
+  p.reserve(reports_.size());
+  for (const FrameReport& r : reports_) p.push_back(r.T_world_camera);
+  return p;
+}
+
+std::vector<double> ScanSession::timestamps() const {
+  std::vector<double> t;
+  t.reserve(reports_.size());
+  for (const FrameReport& r : reports_) t.push_back(r.timestamp);
+  return t;
+}
+
+StageTimes ScanSession::mean_ms() const { return reports_.empty() ? StageTimes{} : total_ms_ / double(frames()); }
+
+double ScanSession::frames_per_second() const {
+  const double ms = total_ms_.total();
+  return ms > 0 ? 1000.0 * double(frames()) / ms : 0.0;
+}
+
+std::optional<double> ScanSession::exposure_median_relative_error() const {
+  std::vector<double> err;
+  for (const FrameReport& r : reports_)
+    if (r.exposure_ratio_reported && r.index > 0 && r.exposure_samples > 0)
+      err.push_back(std::abs(r.exposure_ratio / *r.exposure_ratio_reported - 1));
+  if (err.empty()) return std::nullopt;
+  std::nth_element(err.begin(), err.begin() + std::ptrdiff_t(err.size() / 2), err.end());
+  return err[err.size() / 2];
+}
+
+}  // namespace hdrf::pipeline

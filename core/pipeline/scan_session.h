@@ -1,0 +1,45 @@
+// One scan: the per-frame system and everything a scan accumulates (the trajectory, the
+// per-frame reports, exposures and stage times). The scan command, the studio, the engine
+// benchmark and the experiments all run frames through one of these, so that the totals
+// they report are computed once, here.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "pipeline/pipeline.h"
+
+namespace hdrf::pipeline {
+
+class ScanSession {
+ public:
+  ScanSession(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor);
+
+  // Runs one frame and records its report.
+  const FrameReport& Process(const FrameInput& frame);
+
+  Pipeline& pipeline() { return pipeline_; }
+  const Pipeline& pipeline() const { return pipeline_; }
+
+  const std::vector<FrameReport>& reports() const { return reports_; }
+  int frames() const { return int(reports_.size()); }
+  int lost() const { return lost_; }
+  // One pose per processed frame (a lost frame keeps the last good pose), with timestamps.
+  std::vector<Pose> poses() const;
+  std::vector<double> timestamps() const;
+  // Stage times summed over every frame, and their mean per frame.
+  const StageTimes& total_ms() const { return total_ms_; }
+  StageTimes mean_ms() const;
+  double frames_per_second() const;  // frames over the summed stage time
+  // The median of |estimated / reported - 1| over frames with both an estimate and a
+  // sensor-reported exposure (not the first); none where no frame had both.
+  std::optional<double> exposure_median_relative_error() const;
+
+ private:
+  Pipeline pipeline_;
+  std::vector<FrameReport> reports_;
+  StageTimes total_ms_;
+  int lost_ = 0;
+};
+
+}  // namespace hdrf::pipeline

@@ -1,0 +1,32 @@
+// The tracker on the GPU (tracking_cuda.cu; CUDA builds only): the pyramids through the
+// shared drivers (pyramid_driver.h) and the Gauss-Newton sums of the same per-pixel terms
+// (tracking_impl.h) as AccumulateCpu, reduced in a fixed order. Views are device views.
+#pragma once
+
+#include <memory>
+
+#include "tracking/pyramid_driver.h"
+#include "tracking/tracking.h"
+
+namespace hdrf::tracking {
+
+void BuildLiveLevelOnGpu(const LiveLevelViews* finer, const LiveLevelViews& level, float max_normal_jump_m);
+void BuildReferenceLevelOnGpu(const ReferenceLevelViews& finer, const ReferenceLevelViews& level);
+void PlaceInWorldOnGpu(ImageView<const Float3> vertex_c, ImageView<const Float3> normal_c,
+                       const RigidTransform& T_world_camera, ImageView<Float3> vertex_w, ImageView<Float3> normal_w);
+
+class GpuNormalEquations {
+ public:
+  GpuNormalEquations();
+  ~GpuNormalEquations();
+  GnSystem Accumulate(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
+                      const Pose& T_world_live, const TrackerOptions& o);
+  long CountLiveVertices(ImageView<const Float3> vertex_c);       // with depth (z > 0)
+  long CountReferenceVertices(ImageView<const Float3> vertex_w);  // any non-zero vertex
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hdrf::tracking

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "common/error.h"
+#include "support/sim_frames.h"
+#include "support/test_support.h"
+#include "imaging/imaging.h"
+
+namespace hdrf {
+namespace {
+
+using test::Frames;
+using test::Median;
+using test::Metres;
+
+TEST(Imaging, BilateralFilterSmoothsNoiseAndKeepsDepthEdges) {
+  // A 1 m / 2 m step with 1 cm noise and a hole.
+  DepthImage d(64, 48);
+  std::uint32_t h = 12345;
+  auto noise = [&h] {
+    h = h * 1664525u + 1013904223u;
+    return (float((h >> 8) & 0xffff) / 65535.f - 0.5f) * 0.0346f;  // uniform, sd 1 cm
+  };
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) d(x, y) = (x < 32 ? 1.f : 2.f) + noise();
+  d(10, 10) = 0;
+  const DepthImage f = imaging::BilateralDepth(d);
+  double in2 = 0, out2 = 0;
+  int n = 0;
+  float worst_edge = 0;
+  for (int y = 4; y < 44; ++y)
+    for (int x = 4; x < 60; ++x) {
+      const float truth = x < 32 ? 1.f : 2.f;
+      if (x >= 30 && x <= 33) worst_edge = std::max(worst_edge, std::abs(f(x, y) - truth));
+      if (d(x, y) == 0) continue;
+      in2 += std::pow(d(x, y) - truth, 2);
+      out2 += std::pow(f(x, y) - truth, 2);
+      ++n;
+    }
+  std::printf("bilateral: noise %.4f -> %.4f m; worst error next to the edge %.4f m\n", std::sqrt(in2 / n),
+              std::sqrt(out2 / n), worst_edge);
+  EXPECT_LT(std::sqrt(out2 / n), 0.5 * std::sqrt(in2 / n));
+  EXPECT_LT(worst_edge, 0.03f);  // no blending across the 1 m step
+  EXPECT_EQ(f(10, 10), 0.f);     // holes stay holes
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf::imaging {
+namespace {
+
+// Vertices back-project the depth; normals of a plane facing the camera point at it and are
+// undefined across a depth jump; depth pyramids average only neighbours close in depth.
+TEST(ImagingSteps, VerticesNormalsAndDepthPyramid) {
+  const PinholeCamera cam{4, 4, 2.f, 2.f, 1.5f, 1.5f};
+  DepthImage d(4, 4, 2.f);
+  const Float3 v = VertexPixel(View(d), cam, 3, 1);
+  EXPECT_FLOAT_EQ(v.x, (3 - 1.5f) * 2.f / 2.f);
+  EXPECT_FLOAT_EQ(v.y, (1 - 1.5f) * 2.f / 2.f);
+  EXPECT_FLOAT_EQ(v.z, 2.f);
+  Image<Float3> vm(4, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) vm(x, y) = VertexPixel(View(d), cam, x, y);
+  const Float3 n = NormalPixel(View(vm), 0.1f, 1, 1);
+  EXPECT_NEAR(n.z, -1.f, 1e-6);
+  EXPECT_NEAR(n.x, 0.f, 1e-6);
+  vm(2, 1).z = 3.f;  // a jump of 50 %
+  EXPECT_EQ(Length(NormalPixel(View(vm), 0.1f, 1, 1)), 0.f);
+  EXPECT_GT(Length(NormalPixel(View(vm), 0.6f, 1, 1)), 0.f);
+  EXPECT_EQ(Length(NormalPixel(View(vm), 0.1f, 3, 3)), 0.f);  // no right neighbour
+  DepthImage p(2, 2);
+  p(0, 0) = 1.f, p(1, 0) = 1.02f, p(0, 1) = 0.f, p(1, 1) = 3.f;
+  EXPECT_FLOAT_EQ(DownsampleDepthPixel(View(p), 0, 0), 1.01f);  // the far and empty ones left out
+  p(0, 0) = 0.f;
+  EXPECT_EQ(DownsampleDepthPixel(View(p), 0, 0), 0.f);  // no data at the sample stays none
+}
+
+}  // namespace
+}  // namespace hdrf::imaging

@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "common/error.h"
+#include "support/sim_frames.h"
+#include "support/test_support.h"
+#include "normalized_radiance/normalized_radiance.h"
+#include "radiometry/pcf.h"
+#include "radiometry/radiance.h"
+#include "sim/builtin_sensor.h"
+
+namespace hdrf {
+namespace {
+
+using test::Frames;
+using test::Median;
+using test::Metres;
+
+TEST(NormalizedRadiance, IsExposureInvariant) {
+  // One static view at 4 ms and 32 ms (8x apart).
+  sim::SimOptions o;
+  o.sweep = true;
+  o.sweep_exposures_ms = {4, 32};
+  o.sweep_repeats = 1;
+  sim::SyntheticSource src(o);
+  const sim::SimFrame a = src.Next(), b = src.Next();
+  const SensorInfo s = src.sensor();
+  const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
+  RadianceImage ra, rb;
+  Image<float> ca, cb, ma, mb;
+  radiometry::ConvertFrame(a.color, *s.response, pcf, 1, ra, ca, ma);
+  radiometry::ConvertFrame(b.color, *s.response, pcf, 1, rb, cb, mb);
+  const Image<float> na = nr::NormalizedRadiance(nr::Luminance(ra), {});
+  const Image<float> nb = nr::NormalizedRadiance(nr::Luminance(rb), {});
+  std::vector<double> diff, mag;
+  for (std::size_t i = 0; i < na.size(); ++i) {
+    if (ca[i] < 0.3f || cb[i] < 0.3f) continue;  // both well exposed
+    diff.push_back(std::abs(na[i] - nb[i]));
+    mag.push_back(std::abs(na[i]));
+  }
+  ASSERT_GT(diff.size(), 5000u);
+  std::printf("NR at 4 and 32 ms: median |difference| %.3f against median |NR| %.3f over %zu pixels\n",
+              Median(diff), Median(mag), diff.size());
+  EXPECT_LT(Median(diff), 0.1);
+  EXPECT_GT(Median(mag), 0.3);  // the signal is real, not all zeros
+  // Raw intensity is not invariant at all: the baseline's problem.
+  double raw_diff = 0;
+  for (std::size_t i = 0; i < a.color.size(); ++i) raw_diff += std::abs(a.color[i].g - b.color[i].g);
+  EXPECT_GT(raw_diff / double(a.color.size()), 30.0);
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf::nr {
+namespace {
+
+// The per-pixel steps against brute force on a small image: cell means skip pixels without
+// data, the integral images sum every cell above and left, the local statistics are the
+// patch's mean and std, and a pixel normalizes by them (with the floor on flat patches).
+TEST(NormalizedRadianceSteps, MatchBruteForceOnASmallImage) {
+  Image<float> lum(6, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 6; ++x) lum(x, y) = float(1 + x + 3 * y);
+  lum(0, 0) = 0;  // no data
+  EXPECT_FLOAT_EQ(NrCellMean(View(lum), 0, 0, 2), (2.f + 4.f + 5.f) / 3.f);
+  EXPECT_FLOAT_EQ(NrCellMean(View(lum), 2, 1, 2), 13.f);  // 11, 12, 14, 15
+  Image<float> cells(3, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) cells(x, y) = NrCellMean(View(lum), x, y, 2);
+  Image<double> cnt(4, 3), s1(4, 3), s2(4, 3);
+  const NrIntegrals in{View(cnt), View(s1), View(s2)};
+  for (int y = 0; y < 2; ++y) NrRowPass(View(cells), in, y);
+  for (int x = 0; x <= 3; ++x) NrColumnPass(in, x);
+  double all = 0, all2 = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) all += cells[i], all2 += double(cells[i]) * cells[i];
+  EXPECT_DOUBLE_EQ(cnt(3, 2), 6.0);
+  EXPECT_NEAR(s1(3, 2), all, 1e-9);
+  EXPECT_NEAR(s2(3, 2), all2, 1e-6);
+  float mean = 0, sd = 0;
+  NrLocalStats(in, 1, 0, 2, &mean, &sd);  // a patch covering every cell
+  const double m = all / 6, var = all2 / 6 - m * m;
+  EXPECT_NEAR(mean, m, 1e-5);
+  EXPECT_NEAR(sd, std::sqrt(var), 1e-4);
+  // A pixel at the mean normalizes to 0; where the std is below the floor, the floor divides.
+  Image<float> ms(1, 1, 10.f), ss(1, 1, 2.f), flat(1, 1, 0.f), one(2, 2, 14.f);
+  float v = 0;
+  NrPixel(View(one), View(ms), View(ss), 2, 1e-3f, 0, 0, &v, nullptr, nullptr);
+  EXPECT_FLOAT_EQ(v, 2.f);
+  NrPixel(View(one), View(ms), View(flat), 2, 0.1f, 0, 0, &v, nullptr, nullptr);
+  EXPECT_FLOAT_EQ(v, 4.f);  // (14 - 10) / (0.1 * 10)
+}
+
+}  // namespace
+}  // namespace hdrf::nr

@@ -1,0 +1,163 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "common/error.h"
+#include "support/sim_frames.h"
+#include "support/test_support.h"
+#include "imaging/imaging.h"
+#include "eval/eval.h"
+#include "normalized_radiance/normalized_radiance.h"
+#include "pipeline/frame_source.h"
+#include "pipeline/pipeline.h"
+#include "radiometry/pcf.h"
+#include "radiometry/radiance.h"
+#include "sim/builtin_sensor.h"
+#include "volume/volume.h"
+
+namespace hdrf {
+namespace {
+
+using test::Frames;
+using test::Median;
+using test::Metres;
+
+TEST(Volume, FusedDepthMatchesTruthAndRaycastAgrees) {
+  const auto frames = Frames(12, sim::AeMode::kFixed, /*exact_depth=*/true);
+  volume::VolumeOptions vo;
+  volume::Volume vol(vo);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  for (const auto& f : frames) {
+    const DepthImage d = Metres(f.depth);
+    const auto v = imaging::VertexMap(d, cam);
+    const auto n = imaging::NormalMap(v);
+    Image<float> one(320, 240, 1.f);
+    RadianceImage r = f.radiance.Clone();
+    volume::Volume::FrameInput in{&d, &n, &r, &one, &one, &one, cam, T0inv * f.T_world_camera};
+    vol.Integrate(in);
+  }
+  const auto& last = frames.back();
+  const auto rend = vol.Raycast(cam, T0inv * last.T_world_camera);
+  std::vector<double> err;
+  long inside = 0;
+  const Pose T = T0inv * last.T_world_camera;
+  const float half = 0.5f * vo.size_m - 2 * vo.truncation_m();
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const float z = last.depth_true(x, y);
+      if (!(z > 0)) continue;
+      const Float3 pc = cam.BackProject(float(x), float(y), z);
+      const Vec3 pw = T * Vec3(pc.x, pc.y, pc.z);
+      if (pw.cwiseAbs().maxCoeff() > half) continue;  // outside the volume's cube
+      ++inside;
+      if (rend.depth(x, y) > 0) err.push_back(std::abs(rend.depth(x, y) - z));
+    }
+  const double coverage = double(err.size()) / double(inside);
+  std::printf("ray cast vs true depth: median |error| %.4f m (voxel %.4f), coverage %.3f, %zu bricks\n",
+              Median(err), vo.voxel_m(), coverage, vol.allocated_bricks());
+  EXPECT_LT(Median(err), 0.25 * vo.voxel_m());
+  EXPECT_GT(coverage, 0.9);
+}
+
+TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {
+  // Every finite half survives half -> float -> half bit for bit.
+  int finite = 0;
+  for (std::uint32_t h = 0; h < 65536; ++h) {
+    if (((h >> 10) & 0x1f) == 31) continue;
+    ++finite;
+    ASSERT_EQ(volume::FloatToHalf(volume::HalfToFloat(std::uint16_t(h))), h) << "half 0x" << std::hex << h;
+  }
+  EXPECT_EQ(finite, 63488);
+  // Rounding: between two neighbouring halves, the nearer wins; a tie goes to the even one.
+  const float one = volume::HalfToFloat(0x3c00), next = volume::HalfToFloat(0x3c01);
+  EXPECT_EQ(volume::FloatToHalf(one + 0.49f * (next - one)), 0x3c00);
+  EXPECT_EQ(volume::FloatToHalf(one + 0.51f * (next - one)), 0x3c01);
+  EXPECT_EQ(volume::FloatToHalf(one + 0.5f * (next - one)), 0x3c00);  // tie, even mantissa
+  const float n2 = volume::HalfToFloat(0x3c02);
+  EXPECT_EQ(volume::FloatToHalf(next + 0.5f * (n2 - next)), 0x3c02);  // tie, rounds up to even
+  EXPECT_EQ(volume::FloatToHalf(1e6f), 0x7c00);                        // overflow: infinity
+  EXPECT_EQ(volume::FloatToHalf(3e-8f), 0x0001);                       // nearest subnormal
+  // Relative error of normal values at most 2^-11.
+  double worst = 0;
+  for (float f = 1e-4f; f < 6e4f; f *= 1.0137f)
+    worst = std::max(worst, std::abs(double(volume::HalfToFloat(volume::FloatToHalf(f))) / f - 1));
+  EXPECT_LE(worst, 1.0 / 2048 + 1e-9);
+  EXPECT_GT(worst, 1.0 / 8192);  // really quantised
+}
+
+// The compact encodings against the full one on the same 100-frame flicker sequence: fused
+// with the true poses and exposures (the encoding alone decides the surface and radiance),
+// then tracked end to end (docs/benchmarks.md records the table).
+
+// The compact encodings against the full one on the same 100-frame flicker sequence: fused
+// with the true poses and exposures (the encoding alone decides the surface and radiance),
+// then tracked end to end (docs/benchmarks.md records the table).
+TEST(VoxelEncoding, CompactVoxelsKeepTheAccuracyOfFullOnes) {
+  sim::SimOptions so;
+  so.frames = 100;
+  so.ae.mode = sim::AeMode::kFlicker;
+  pipeline::SyntheticFrameSource src(so);
+  const std::vector<pipeline::FrameInput> frames = pipeline::ReadAll(src);
+  const sim::Scene scene = sim::Scene::Build(so.scene, so.seed);
+  const SensorInfo& sensor = src.sensor();
+  const radiometry::PcfTables pcf = radiometry::ComputePcf(*sensor.response, *sensor.noise);
+  const PinholeCamera cam = sensor.camera;
+  const Pose T0 = *frames[0].T_world_camera_true;
+  struct Result {
+    double ate_cm, mesh_mm, stops, within01;
+    std::size_t bytes;
+  };
+  std::map<volume::VoxelEncoding, Result> res;
+  for (auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    // 1. Fusion at the true poses and exposure ratios.
+    volume::VolumeOptions vo;
+    vo.encoding = enc;
+    volume::Volume vol(vo);
+    for (const auto& f : frames) {
+      RadianceImage rad;
+      Image<float> conf, maxconf;
+      radiometry::ConvertFrame(f.color, *sensor.response, pcf, 1, rad, conf, maxconf);
+      const DepthImage d = imaging::BilateralDepth(f.depth_m);
+      const Image<Float3> n = imaging::NormalMap(imaging::VertexMap(d, cam));
+      const Image<float> nr = nr::NormalizedRadiance(nr::Luminance(rad), {});
+      volume::Volume::FrameInput in{&d, &n, &rad, &nr, &conf, &maxconf, cam, T0.inverse() * *f.T_world_camera_true,
+                                    float(*frames[0].exposure_ms / *f.exposure_ms)};
+      vol.Integrate(in);
+    }
+    const auto me = eval::CompareModel(mesh::ExtractMesh(vol), scene, T0);
+    // 2. Tracking end to end.
+    pipeline::PipelineOptions o;
+    o.volume.encoding = enc;
+    pipeline::Pipeline p(o, cam, sensor);
+    std::vector<Pose> est, gt;
+    for (const auto& f : frames) {
+      est.push_back(p.Process(f).T_world_camera);
+      gt.push_back(T0.inverse() * *f.T_world_camera_true);
+    }
+    const auto te = eval::CompareTrajectories(est, gt);
+    res[enc] = {100 * te.ate_rmse_m, 1000 * me.mesh_median_distance_m, me.radiance_median_stops, me.within_01_stop,
+                vol.bytes()};
+    std::printf("encoding %2d B/voxel: tracked ATE %.2f cm; fused at true poses: mesh median %.2f mm, radiance "
+                "median %.4f stops, %.1f %% within 0.1 stop, volume %.1f MiB\n",
+                volume::EncodingBytes(enc), res[enc].ate_cm, res[enc].mesh_mm, res[enc].stops, 100 * res[enc].within01,
+                double(res[enc].bytes) / (1024.0 * 1024.0));
+  }
+  const Result& full = res[volume::VoxelEncoding::kFull];
+  EXPECT_LE(full.ate_cm, 2.0);
+  for (auto enc : {volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    const Result& r = res[enc];
+    EXPECT_LE(r.ate_cm, full.ate_cm + 0.3) << volume::EncodingBytes(enc) << " B";
+    EXPECT_LE(r.mesh_mm, full.mesh_mm + 0.2) << volume::EncodingBytes(enc) << " B";
+    EXPECT_LE(r.stops, full.stops + 0.005) << volume::EncodingBytes(enc) << " B";
+    EXPECT_GE(r.within01, full.within01 - 0.01) << volume::EncodingBytes(enc) << " B";
+    EXPECT_LT(r.bytes, full.bytes);
+  }
+  EXPECT_LT(res[volume::VoxelEncoding::kCompact].bytes, 0.5 * double(full.bytes));
+}
+
+}  // namespace
+}  // namespace hdrf
