@@ -47,11 +47,14 @@ std::string Text(double v) {
   return b;
 }
 
-// Decimals that show the default and the range's small end.
+// The fewest decimals (2 to 6) that show the default exactly.
 int Decimals(const pipeline::Setting& s) {
   const double d = std::stod(s.Default());
-  const double small = std::max(1e-6, std::min(std::abs(d) > 0 ? std::abs(d) : 1.0, s.min > 0 ? s.min : 1.0));
-  return std::clamp(int(std::ceil(-std::log10(small))) + 2, 2, 6);
+  for (int k = 2; k < 6; ++k) {
+    const double scale = std::pow(10.0, k);
+    if (std::abs(std::round(d * scale) / scale - d) <= 1e-9 * std::max(1.0, std::abs(d))) return k;
+  }
+  return 6;
 }
 
 }  // namespace
@@ -116,11 +119,22 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
       }
       case pipeline::SettingKind::kReal: {
         auto* w = new QDoubleSpinBox;
-        w->setDecimals(Decimals(s));
+        const int decimals = Decimals(s);
+        w->setDecimals(decimals);
         w->setRange(s.min, s.max);
+        w->setSingleStep(std::pow(10.0, 1 - decimals));
         if (!s.unit.empty()) w->setSuffix(QString::fromStdString(" " + s.unit));
         e.widget = w;
-        e.get = [w] { return Text(w->value()); };
+        e.get = [w, &s] {
+          // The registry's own spelling of the value (1e+08, 0.1), as Default() gives it.
+          pipeline::PipelineOptions probe;
+          try {
+            s.set(probe, Text(w->value()));
+            return s.get(probe);
+          } catch (const Error&) {
+            return Text(w->value());
+          }
+        };
         e.set = [w](const std::string& t) { w->setValue(std::stod(t)); };
         connect(w, &QDoubleSpinBox::valueChanged, this, &SettingsForm::changed);
         break;
@@ -135,8 +149,14 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
       }
     }
     e.widget->setObjectName(QString::fromStdString("setting_" + s.key));
+    // Two fields that differ only by unit ("max jump" in m and in deg) keep the unit.
+    QString label = Label(s);
+    for (const pipeline::Setting& other : pipeline::Settings())
+      if (&other != &s && other.key.substr(0, dot + 1) == s.key.substr(0, dot + 1) && Label(other) == label &&
+          !s.unit.empty())
+        label += QString::fromStdString(" (" + s.unit + ")");
     e.widget->setToolTip(QString::fromStdString(s.key + ": " + s.help + " [" + s.Range() + "; default " + s.Default() + "]"));
-    f->addRow(Label(s), e.widget);
+    f->addRow(label, e.widget);
     e.set(s.Default());
     editors_[s.key] = e;
   }

@@ -1,6 +1,7 @@
 #include "pipeline/settings.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,10 +23,12 @@ void PipelineOptions::Check() const {
 
 namespace {
 
-std::string FormatNumber(double v) {
+// The shortest text that reads back as the same value of its own type (0.1f is "0.1").
+template <typename T>
+std::string FormatNumber(T v) {
   char b[64];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, r.ptr);
 }
 
 // The whole of `text` as a finite number; throws naming the key otherwise.
@@ -65,7 +68,7 @@ Setting Bind(std::string key, SettingKind kind, double lo, double hi, std::strin
   s.get = [field](const PipelineOptions& o) {
     const auto v = field(const_cast<PipelineOptions&>(o));
     if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) return std::string(v ? "true" : "false");
-    else return FormatNumber(double(v));
+    else return FormatNumber(v);
   };
   s.set = [field, kind, self = s](PipelineOptions& o, const std::string& text) {
     auto& f = field(o);

@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QFile>
 #include <QSignalSpy>
+#include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QThread>
@@ -16,11 +17,13 @@
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
 #include "gui/scan_worker.h"
+#include "gui/settings_form.h"
 #include "gui/tone_mapper.h"
 #include "io/exr.h"
 #include "io/ply.h"
 #include "io/sequence.h"
 #include "sim/synthetic_source.h"
+#include "support/test_support.h"
 
 namespace hdrf::gui {
 namespace {
@@ -150,6 +153,49 @@ class WorkerOnThread {
   QThread t;
   ScanWorker* w;
 };
+
+// The engine's form is generated from the settings registry: one editor per setting, the
+// registry's defaults, values that round-trip through the form and through QSettings, and a
+// saved value the registry refuses falls back to the default.
+TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
+  SettingsForm form;
+  for (const pipeline::Setting& s : pipeline::Settings()) {
+    EXPECT_NE(form.findChild<QWidget*>(QString::fromStdString("setting_" + s.key)), nullptr) << s.key;
+    if (s.key != "device") EXPECT_EQ(form.Value(s.key), s.Default()) << s.key;
+  }
+  pipeline::PipelineOptions o;
+  o.volume.resolution = 192;
+  o.volume.tau0 = 0.35f;
+  o.tracker.kind = tracking::TrackerKind::kIcp;
+  o.tracker.frame_to_model = false;
+  o.tracker.iterations = {6, 5, 4, 3};
+  o.nr.patch = 9;
+  o.depth.sigma_depth_m = 0.05f;
+  form.SetOptions(o);
+  const pipeline::PipelineOptions back = form.Options();
+  EXPECT_EQ(back.volume.resolution, 192);
+  EXPECT_FLOAT_EQ(back.volume.tau0, 0.35f);
+  EXPECT_EQ(back.tracker.kind, tracking::TrackerKind::kIcp);
+  EXPECT_FALSE(back.tracker.frame_to_model);
+  EXPECT_EQ(back.tracker.iterations[3], 3);
+  EXPECT_EQ(back.nr.patch, 9);
+  EXPECT_FLOAT_EQ(back.depth.sigma_depth_m, 0.05f);
+  QTemporaryDir dir;
+  {
+    QSettings saved(dir.filePath("s.ini"), QSettings::IniFormat);
+    form.Save(saved);
+    saved.setValue("engine/nr.patch", "eight");  // written by something else: refused on load
+  }
+  SettingsForm again;
+  QSettings saved(dir.filePath("s.ini"), QSettings::IniFormat);
+  again.Load(saved);
+  EXPECT_EQ(again.Value("volume.resolution"), "192");
+  EXPECT_EQ(again.Value("tracker.kind"), "icp");
+  EXPECT_EQ(again.Value("nr.patch"), "15");  // the default stays
+  // A value the options refuse together (compact voxels cap weights at 65) is reported.
+  again.SetValue("volume.max_weight", "100");
+  test::ExpectErrorContaining([&] { again.Options(); }, {"'volume.max_weight'"});
+}
 
 TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   WorkerOnThread wt;
