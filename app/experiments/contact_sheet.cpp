@@ -1,4 +1,4 @@
-// hdrfusion contact-sheet SEQUENCE --out sheet.png: colour | depth | HDR (tone-mapped) for a
+// hdrfusion-experiments contact-sheet SEQUENCE --out sheet.png: colour | depth | HDR (tone-mapped) for a
 // few frames of a sequence, side by side, with one tone-mapping scale for all rows so that
 // constant radiance looks constant while the delivered colour flickers.
 #include <algorithm>

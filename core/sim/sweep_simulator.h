@@ -8,7 +8,7 @@
 
 namespace hdrf::sim {
 
-// The sensor noise of the calibration tests and `bench --suite calibration`: a consumer
+// The sensor noise of the calibration tests and `hdrfusion-experiments calibration`: a consumer
 // sensor at base gain, in units of f^-1(128) = 1.
 inline const radiometry::NoiseModel kSweepNoise{{0.030f, 0.025f, 0.035f}, {0.020f, 0.015f, 0.025f}};
 

@@ -71,7 +71,7 @@ TEST(Calibration, RecoversTheXtionResponse) {
 }
 
 // Triplets across the database, with its hardest curves for each method in the last one
-// (bench --suite calibration runs all 201).
+// (hdrfusion-experiments calibration runs all 201).
 TEST(Calibration, RecoversDorfResponses) {
   const auto file = test::SharedData("dorf/dorf_invI_201x1024.txt");
   HDRF_SKIP_WITHOUT(file, "dorf/dorf_invI_201x1024.txt");

@@ -1,5 +1,5 @@
 // hdrfusion-peers: runs other RGB-D trackers on a recorded sequence, with their documented
-// default settings, for `hdrfusion bench --suite tracking` to compare with. Built only where
+// default settings, for `hdrfusion-experiments tracking` to compare with. Built only where
 // Debian's libopencv-contrib-dev (rgbd module) and libopen3d-dev are installed
 // (tools/install_deps.sh --peers).
 //
@@ -221,7 +221,7 @@ Result RunOpen3d(const io::SequenceReader& seq, std::size_t n, std::size_t tsdf_
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Runs OpenCV rgbd and Open3D trackers on a sequence, for hdrfusion bench --suite tracking"};
+  CLI::App app{"Runs OpenCV rgbd and Open3D trackers on a sequence, for hdrfusion-experiments tracking"};
   std::string seq_dir, out, only;
   int frames = 0, tsdf_frames = 100;
   app.add_option("SEQUENCE", seq_dir, "Sequence folder (docs/formats.md)")->required();
