@@ -55,3 +55,41 @@ TEST(Tracking, FollowsTheCameraThroughFourfoldExposureJumps) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf::tracking {
+namespace {
+
+// One ICP term: a live point 1 cm in front of a reference plane facing the camera adds the
+// point-to-plane residual with the Jacobian of the plane's normal; a normal turned away
+// beyond the angle gate, or a point beyond the distance gate, adds nothing.
+TEST(IcpTerm, PointToPlaneResidualAndGates) {
+  const PinholeCamera cam{4, 4, 4.f, 4.f, 1.5f, 1.5f};
+  Image<Float3> live_v(4, 4), live_n(4, 4, Float3{0, 0, -1}), ref_v(4, 4), ref_n(4, 4, Float3{0, 0, -1});
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      live_v(x, y) = cam.BackProject(float(x), float(y), 0.99f);
+      ref_v(x, y) = cam.BackProject(float(x), float(y), 1.0f);
+    }
+  TrackerOptions o;
+  const Pose I = Pose::Identity();
+  const ReferenceView ref{cam, View(ref_v), View(ref_n), {}};
+  const LiveView live{cam, View(live_v), View(live_n), {}, {}, {}, {}};
+  IcpArgs a = MakeIcpArgs(ref, I, live, I, o);
+  GnSystem acc;
+  ASSERT_TRUE(IcpTerm(a, 1, 1, acc));
+  EXPECT_EQ(acc.icp_n(), 1.0);
+  // r = n.(p - m) = (0,0,-1).(0,0,-0.01) = 0.01 m, within the Huber threshold (1.345 sigma):
+  // full weight, and the squared residual r^2 in m^2.
+  EXPECT_DOUBLE_EQ(acc.icp_w(), 1.0);
+  EXPECT_NEAR(acc.icp_r2(), 1e-4, 1e-7);
+  live_n(1, 1) = Float3{0, -1, 0};  // 90 degrees off the reference normal
+  GnSystem none;
+  EXPECT_FALSE(IcpTerm(a, 1, 1, none));
+  live_n(1, 1) = Float3{0, 0, -1};
+  live_v(1, 1) = cam.BackProject(1.f, 1.f, 0.8f);  // 20 cm off: beyond icp_max_dist_m
+  EXPECT_FALSE(IcpTerm(a, 1, 1, none));
+  EXPECT_EQ(none.icp_n(), 0.0);
+}
+
+}  // namespace
+}  // namespace hdrf::tracking

@@ -161,3 +161,57 @@ TEST(VoxelEncoding, CompactVoxelsKeepTheAccuracyOfFullOnes) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf::volume {
+namespace {
+
+// One voxel's update: in front of the surface it stores the signed distance over the
+// truncation (capped at 1), weighted by |n.v|; radiance only near the surface, above tau0
+// and with its confidence as weight; behind the truncation band nothing.
+TEST(IntegrateVoxel, RunningMeansOfDistanceAndRadiance) {
+  const PinholeCamera cam{8, 8, 8.f, 8.f, 3.5f, 3.5f};
+  Image<float> depth(8, 8, 1.0f), conf(8, 8, 0.5f), maxconf(8, 8, 0.6f), nr(8, 8, 0.25f);
+  Image<Float3> normals(8, 8, Float3{0, 0, -1});
+  RadianceImage rad(8, 8, Float3{2, 4, 6});
+  IntegrateArgs a{};
+  a.depth = View(depth);
+  a.normals = View(normals);
+  a.radiance = View(rad);
+  a.nr = View(nr);
+  a.confidence = View(conf);
+  a.max_confidence = View(maxconf);
+  a.radiance_scale = 0.5f;
+  a.cam = cam;
+  a.T_camera_world = ToRigidTransform(Pose::Identity());
+  a.voxel_m = 0.01f;
+  a.trunc_m = 0.04f;
+  a.max_weight = 64;
+  a.max_radiance_weight = 64;
+  a.tau0 = 0.1f;
+  a.cos_tau1 = 0.25f;
+  // Voxel (0,0,0) of the brick whose corner is at the origin: centre (0.005, 0.005, z).
+  auto voxel_at = [&](float z) {
+    a.origin = Float3{0.f, 0.f, z - 0.005f};
+    FullVoxel v{};
+    const int done = IntegrateVoxel(a, 0, 0, 0, 0, v);
+    return std::pair<int, Voxel>{done, v.Decode()};
+  };
+  auto [done, v] = voxel_at(0.98f);  // 2 cm in front of the surface
+  EXPECT_EQ(done, 3);
+  EXPECT_NEAR(v.tsdf, 0.5f, 1e-4);
+  EXPECT_NEAR(v.w, 1.f, 1e-3);  // |n.v| at the centre of the view
+  EXPECT_NEAR(v.radiance.y, 2.f, 1e-6);  // 4 * the exposure scale 0.5
+  EXPECT_NEAR(v.wr, 0.5f, 1e-6);
+  std::tie(done, v) = voxel_at(0.90f);  // far in front: distance capped, no radiance
+  EXPECT_EQ(done, 1);
+  EXPECT_FLOAT_EQ(v.tsdf, 1.f);
+  EXPECT_EQ(v.wr, 0.f);
+  std::tie(done, v) = voxel_at(1.05f);  // behind the band
+  EXPECT_EQ(done, 0);
+  for (std::size_t i = 0; i < maxconf.size(); ++i) maxconf[i] = 0.05f;  // every channel below tau0
+  std::tie(done, v) = voxel_at(0.99f);
+  EXPECT_EQ(done, 1);
+}
+
+}  // namespace
+}  // namespace hdrf::volume
