@@ -24,7 +24,8 @@ QString Label(const pipeline::Setting& s) {
   std::string f = s.key.substr(s.key.find('.') == std::string::npos ? 0 : s.key.find('.') + 1);
   for (const char* suffix : {"_deg", "_px", "_mb", "_m"}) {
     const std::string x = suffix;
-    if (f.size() > x.size() && f.compare(f.size() - x.size(), x.size(), x) == 0) f.resize(f.size() - x.size());
+    if (f.size() > x.size() && f.compare(f.size() - x.size(), x.size(), x) == 0)
+      f.resize(f.size() - x.size());
   }
   for (char& c : f)
     if (c == '_') c = ' ';
@@ -69,7 +70,8 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
     auto& m = expert ? expert_forms : forms;
     auto it = m.find(section);
     if (it != m.end()) return it->second;
-    auto* box = new QGroupBox(expert ? tr("%1 (expert)").arg(SectionTitle(section)) : SectionTitle(section));
+    auto* box = new QGroupBox(expert ? tr("%1 (expert)").arg(SectionTitle(section))
+                                     : SectionTitle(section));
     auto* f = new QFormLayout(box);
     f->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
     outer->addWidget(box);
@@ -98,7 +100,8 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
         for (const auto& c : s.choices) w->addItem(QString::fromStdString(c));
         if (s.key == "device") {
           std::string why;
-          if (!CudaAvailable(&why)) w->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
+          if (!CudaAvailable(&why))
+            w->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
         }
         e.widget = w;
         e.get = [w] { return w->currentText().toStdString(); };
@@ -152,10 +155,11 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
     // Two fields that differ only by unit ("max jump" in m and in deg) keep the unit.
     QString label = Label(s);
     for (const pipeline::Setting& other : pipeline::Settings())
-      if (&other != &s && other.key.substr(0, dot + 1) == s.key.substr(0, dot + 1) && Label(other) == label &&
-          !s.unit.empty())
+      if (&other != &s && other.key.substr(0, dot + 1) == s.key.substr(0, dot + 1) &&
+          Label(other) == label && !s.unit.empty())
         label += QString::fromStdString(" (" + s.unit + ")");
-    e.widget->setToolTip(QString::fromStdString(s.key + ": " + s.help + " [" + s.Range() + "; default " + s.Default() + "]"));
+    e.widget->setToolTip(QString::fromStdString(s.key + ": " + s.help + " [" + s.Range() +
+                                                "; default " + s.Default() + "]"));
     f->addRow(label, e.widget);
     e.set(s.Default());
     editors_[s.key] = e;
@@ -193,7 +197,8 @@ void SettingsForm::SetValue(const std::string& key, const std::string& text) {
 }
 
 void SettingsForm::Save(QSettings& s) const {
-  for (const auto& [key, e] : editors_) s.setValue(QString::fromStdString("engine/" + key), QString::fromStdString(e.get()));
+  for (const auto& [key, e] : editors_)
+    s.setValue(QString::fromStdString("engine/" + key), QString::fromStdString(e.get()));
 }
 
 void SettingsForm::Load(const QSettings& s) {

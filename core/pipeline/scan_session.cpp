@@ -5,7 +5,8 @@
 
 namespace hdrf::pipeline {
 
-ScanSession::ScanSession(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor)
+ScanSession::ScanSession(const PipelineOptions& options, const PinholeCamera& camera,
+                         const SensorInfo& sensor)
     : pipeline_(options, camera, sensor) {}
 
 const FrameReport& ScanSession::Process(const FrameInput& frame) {
@@ -30,7 +31,9 @@ std::vector<double> ScanSession::timestamps() const {
   return t;
 }
 
-StageTimes ScanSession::mean_ms() const { return reports_.empty() ? StageTimes{} : total_ms_ / double(frames()); }
+StageTimes ScanSession::mean_ms() const {
+  return reports_.empty() ? StageTimes{} : total_ms_ / double(frames());
+}
 
 double ScanSession::frames_per_second() const {
   const double ms = total_ms_.total();

@@ -13,7 +13,8 @@ namespace hdrf::pipeline {
 
 class ScanSession {
  public:
-  ScanSession(const PipelineOptions& options, const PinholeCamera& camera, const SensorInfo& sensor);
+  ScanSession(const PipelineOptions& options, const PinholeCamera& camera,
+              const SensorInfo& sensor);
 
   // Runs one frame and records its report.
   const FrameReport& Process(const FrameInput& frame);

@@ -49,15 +49,16 @@ void CheckRange(const Setting& s, double v) {
 
 double ParseChecked(const Setting& s, const std::string& text, bool whole) {
   const double v = ParseNumber(s.key, text);
-  if (whole && v != std::floor(v)) throw SettingError(s.key, "'" + text + "' is not a whole number");
+  if (whole && v != std::floor(v))
+    throw SettingError(s.key, "'" + text + "' is not a whole number");
   CheckRange(s, v);
   return v;
 }
 
 // A numeric or boolean field reached through `field(options)`.
 template <typename Field>
-Setting Bind(std::string key, SettingKind kind, double lo, double hi, std::string unit, std::string help,
-             Field field) {
+Setting Bind(std::string key, SettingKind kind, double lo, double hi, std::string unit,
+             std::string help, Field field) {
   Setting s;
   s.key = std::move(key);
   s.kind = kind;
@@ -67,16 +68,21 @@ Setting Bind(std::string key, SettingKind kind, double lo, double hi, std::strin
   s.help = std::move(help);
   s.get = [field](const PipelineOptions& o) {
     const auto v = field(const_cast<PipelineOptions&>(o));
-    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) return std::string(v ? "true" : "false");
-    else return FormatNumber(v);
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>)
+      return std::string(v ? "true" : "false");
+    else
+      return FormatNumber(v);
   };
   s.set = [field, kind, self = s](PipelineOptions& o, const std::string& text) {
     auto& f = field(o);
     using T = std::decay_t<decltype(f)>;
     if constexpr (std::is_same_v<T, bool>) {
-      if (text == "true" || text == "1" || text == "on") f = true;
-      else if (text == "false" || text == "0" || text == "off") f = false;
-      else throw SettingError(self.key, "'" + text + "' is not true or false");
+      if (text == "true" || text == "1" || text == "on")
+        f = true;
+      else if (text == "false" || text == "0" || text == "off")
+        f = false;
+      else
+        throw SettingError(self.key, "'" + text + "' is not true or false");
     } else {
       f = T(ParseChecked(self, text, kind == SettingKind::kInt));
     }
@@ -84,9 +90,11 @@ Setting Bind(std::string key, SettingKind kind, double lo, double hi, std::strin
   return s;
 }
 
-#define HDRF_FIELD(expr) [](PipelineOptions & o) -> auto& { return o.expr; }
+#define HDRF_FIELD(expr) \
+  [](PipelineOptions & o) -> auto& { return o.expr; }
 
-Setting Real(std::string key, double lo, double hi, std::string unit, std::string help, auto field) {
+Setting Real(std::string key, double lo, double hi, std::string unit, std::string help,
+             auto field) {
   return Bind(std::move(key), SettingKind::kReal, lo, hi, std::move(unit), std::move(help), field);
 }
 Setting Int(std::string key, double lo, double hi, std::string unit, std::string help, auto field) {
@@ -127,50 +135,75 @@ std::vector<Setting> MakeSettings() {
   constexpr double kBig = 1e12;
   std::vector<Setting> v;
   // The engine as a whole.
-  v.push_back(Choice("device", {"cpu", "cuda"}, "Where the engine runs (cuda: the GPU where one is usable)",
-                     [](const PipelineOptions& o) { return std::string(DeviceName(o.device)); },
-                     [](PipelineOptions& o, const std::string& t) { o.device = t == "cuda" ? Device::kCuda : Device::kCpu; }));
-  v.push_back(Int("pcf", 0, 3, "", "Pixel confidence p0..p3 used for tracking and fusion (p1: square root)",
+  v.push_back(Choice(
+      "device", {"cpu", "cuda"}, "Where the engine runs (cuda: the GPU where one is usable)",
+      [](const PipelineOptions& o) { return std::string(DeviceName(o.device)); },
+      [](PipelineOptions& o, const std::string& t) {
+        o.device = t == "cuda" ? Device::kCuda : Device::kCpu;
+      }));
+  v.push_back(Int("pcf", 0, 3, "",
+                  "Pixel confidence p0..p3 used for tracking and fusion (p1: square root)",
                   HDRF_FIELD(pcf)));
   // Volume.
-  v.push_back(Alias(Int("volume.resolution", 8, 4096, "voxels", "Voxels per side of the cube (a multiple of 8)",
-                        HDRF_FIELD(volume.resolution)),
-                    "--volume-res"));
-  v.push_back(Alias(Real("volume.size_m", 1e-3, 1e4, "m", "Side of the cube, centred on the first camera",
-                         HDRF_FIELD(volume.size_m)),
-                    "--volume-size"));
-  v.push_back(Alias(Choice("volume.voxel", {"compact", "no-nr", "full"},
-                           "Voxel storage: compact (12 B), no-nr (24 B) or full (28 B)",
-                           [](const PipelineOptions& o) { return std::string(volume::VoxelEncodingName(o.volume.encoding)); },
-                           [](PipelineOptions& o, const std::string& t) { o.volume.encoding = volume::ParseVoxelEncoding(t); }),
+  v.push_back(
+      Alias(Int("volume.resolution", 8, 4096, "voxels",
+                "Voxels per side of the cube (a multiple of 8)", HDRF_FIELD(volume.resolution)),
+            "--volume-res"));
+  v.push_back(
+      Alias(Real("volume.size_m", 1e-3, 1e4, "m", "Side of the cube, centred on the first camera",
+                 HDRF_FIELD(volume.size_m)),
+            "--volume-size"));
+  v.push_back(Alias(Choice(
+                        "volume.voxel", {"compact", "no-nr", "full"},
+                        "Voxel storage: compact (12 B), no-nr (24 B) or full (28 B)",
+                        [](const PipelineOptions& o) {
+                          return std::string(volume::VoxelEncodingName(o.volume.encoding));
+                        },
+                        [](PipelineOptions& o, const std::string& t) {
+                          o.volume.encoding = volume::ParseVoxelEncoding(t);
+                        }),
                     "--voxel"));
   v.push_back(Expert(Real("volume.truncation_voxels", 1, 64, "voxels", "TSDF truncation distance",
                           HDRF_FIELD(volume.truncation_voxels))));
-  v.push_back(Expert(Real("volume.max_weight", 1e-3, 1e6, "", "Cap of the TSDF weight (running-mean window)",
-                          HDRF_FIELD(volume.max_weight))));
+  v.push_back(
+      Expert(Real("volume.max_weight", 1e-3, 1e6, "",
+                  "Cap of the TSDF weight (running-mean window)", HDRF_FIELD(volume.max_weight))));
   v.push_back(Expert(Real("volume.max_radiance_weight", 1e-3, 1e6, "", "Cap of the radiance weight",
                           HDRF_FIELD(volume.max_radiance_weight))));
-  v.push_back(Alias(Real("volume.tau0", 0, 0.999, "", "Radiance is fused only where the largest channel PCF exceeds this",
+  v.push_back(Alias(Real("volume.tau0", 0, 0.999, "",
+                         "Radiance is fused only where the largest channel PCF exceeds this",
                          HDRF_FIELD(volume.tau0)),
                     "--tau0"));
-  v.push_back(Alias(Real("volume.tau1_deg", 1e-3, 90, "deg", "... and the angle between normal and view ray is below this",
-                         HDRF_FIELD(volume.tau1_deg)),
-                    "--tau1"));
+  v.push_back(
+      Alias(Real("volume.tau1_deg", 1e-3, 90, "deg",
+                 "Radiance is fused only where the angle between normal and view ray is below this",
+                 HDRF_FIELD(volume.tau1_deg)),
+            "--tau1"));
   v.push_back(Real("volume.max_memory_mb", 1, 1 << 24, "MiB", "Voxel memory the volume may use",
                    HDRF_FIELD(volume.max_memory_mb)));
-  v.push_back(Expert(Real("volume.raycast_near_m", 1e-3, 100, "m", "Ray casting starts this far from the camera",
+  v.push_back(Expert(Real("volume.raycast_near_m", 1e-3, 100, "m",
+                          "Ray casting starts this far from the camera",
                           HDRF_FIELD(volume.raycast_near_m))));
-  v.push_back(Expert(Real("volume.raycast_far_m", 1e-2, 1000, "m", "Ray casting gives up this far from the camera",
+  v.push_back(Expert(Real("volume.raycast_far_m", 1e-2, 1000, "m",
+                          "Ray casting gives up this far from the camera",
                           HDRF_FIELD(volume.raycast_far_m))));
   // Tracking.
-  v.push_back(Alias(Choice("tracker.kind", {"nr+icp", "nr", "icp", "intensity"},
-                           "nr+icp, nr (normalized radiance), icp, or intensity (the brightness-constancy baseline)",
-                           [](const PipelineOptions& o) { return std::string(tracking::TrackerName(o.tracker.kind)); },
-                           [](PipelineOptions& o, const std::string& t) { o.tracker.kind = tracking::ParseTrackerKind(t); }),
-                    "--tracker"));
-  v.push_back(Bool("tracker.frame_to_model", "Track against the model (false: against the previous frame)",
+  v.push_back(Alias(
+      Choice(
+          "tracker.kind", {"nr+icp", "nr", "icp", "intensity"},
+          "nr+icp, nr (normalized radiance), icp, or intensity (the brightness-constancy baseline)",
+          [](const PipelineOptions& o) {
+            return std::string(tracking::TrackerName(o.tracker.kind));
+          },
+          [](PipelineOptions& o, const std::string& t) {
+            o.tracker.kind = tracking::ParseTrackerKind(t);
+          }),
+      "--tracker"));
+  v.push_back(Bool("tracker.frame_to_model",
+                   "Track against the model (false: against the previous frame)",
                    HDRF_FIELD(tracker.frame_to_model)));
-  v.push_back(Expert(Int("tracker.levels", 1, 4, "", "Pyramid levels, each half the size", HDRF_FIELD(tracker.levels))));
+  v.push_back(Expert(Int("tracker.levels", 1, 4, "", "Pyramid levels, each half the size",
+                         HDRF_FIELD(tracker.levels))));
   {
     Setting it;
     it.key = "tracker.iterations";
@@ -182,59 +215,78 @@ std::vector<Setting> MakeSettings() {
     it.expert = true;
     it.get = [](const PipelineOptions& o) {
       std::string t;
-      for (int i = 0; i < 4; ++i) t += (i ? "," : "") + std::to_string(o.tracker.iterations[std::size_t(i)]);
+      for (int i = 0; i < 4; ++i)
+        t += (i ? "," : "") + std::to_string(o.tracker.iterations[std::size_t(i)]);
       return t;
     };
     it.set = [self = it](PipelineOptions& o, const std::string& text) {
       std::vector<std::string> parts;
       std::size_t start = 0;
       for (std::size_t k = 0; k <= text.size(); ++k)
-        if (k == text.size() || text[k] == ',') parts.push_back(text.substr(start, k - start)), start = k + 1;
-      if (text.empty() || parts.size() > 4) throw SettingError(self.key, "needs 1 to 4 whole numbers");
+        if (k == text.size() || text[k] == ',')
+          parts.push_back(text.substr(start, k - start)), start = k + 1;
+      if (text.empty() || parts.size() > 4)
+        throw SettingError(self.key, "needs 1 to 4 whole numbers");
       for (std::size_t i = 0; i < parts.size(); ++i)
         o.tracker.iterations[i] = int(ParseChecked(self, parts[i], true));
     };
     v.push_back(it);
   }
-  v.push_back(Expert(Real("tracker.icp_sigma_m", 1e-6, 10, "m", "Expected scale of the point-to-plane residual",
+  v.push_back(Expert(Real("tracker.icp_sigma_m", 1e-6, 10, "m",
+                          "Expected scale of the point-to-plane residual",
                           HDRF_FIELD(tracker.icp_sigma_m))));
-  v.push_back(Expert(Real("tracker.photo_sigma", 1e-6, 100, "", "Expected scale of the normalized-radiance residual",
+  v.push_back(Expert(Real("tracker.photo_sigma", 1e-6, 100, "",
+                          "Expected scale of the normalized-radiance residual",
                           HDRF_FIELD(tracker.photo_sigma))));
-  v.push_back(Expert(Real("tracker.huber_k", 1e-3, 100, "", "Huber threshold, in units of the scales above",
-                          HDRF_FIELD(tracker.huber_k))));
-  v.push_back(Expert(Real("tracker.icp_max_dist_m", 1e-4, 10, "m", "ICP pairs farther apart are not matched",
-                          HDRF_FIELD(tracker.icp_max_dist_m))));
-  v.push_back(Expert(Real("tracker.icp_max_angle_deg", 1e-3, 90, "deg", "ICP pairs whose normals differ more are not matched",
+  v.push_back(
+      Expert(Real("tracker.huber_k", 1e-3, 100, "", "Huber threshold, in units of the scales above",
+                  HDRF_FIELD(tracker.huber_k))));
+  v.push_back(
+      Expert(Real("tracker.icp_max_dist_m", 1e-4, 10, "m",
+                  "ICP pairs farther apart are not matched", HDRF_FIELD(tracker.icp_max_dist_m))));
+  v.push_back(Expert(Real("tracker.icp_max_angle_deg", 1e-3, 90, "deg",
+                          "ICP pairs whose normals differ more are not matched",
                           HDRF_FIELD(tracker.icp_max_angle_deg))));
-  v.push_back(Real("tracker.min_inlier_share", 0, 1, "", "A frame matching fewer of its pixels than this is lost",
+  v.push_back(Real("tracker.min_inlier_share", 0, 1, "",
+                   "A frame matching fewer of its pixels than this is lost",
                    HDRF_FIELD(tracker.min_inlier_share)));
-  v.push_back(Expert(Real("tracker.max_condition", 1.0001, kBig, "", "A frame whose system is worse conditioned is lost",
+  v.push_back(Expert(Real("tracker.max_condition", 1.0001, kBig, "",
+                          "A frame whose system is worse conditioned is lost",
                           HDRF_FIELD(tracker.max_condition))));
-  v.push_back(Real("tracker.max_jump_m", 1e-4, 100, "m", "A frame moving farther from its prediction is lost",
+  v.push_back(Real("tracker.max_jump_m", 1e-4, 100, "m",
+                   "A frame moving farther from its prediction is lost",
                    HDRF_FIELD(tracker.max_jump_m)));
-  v.push_back(Real("tracker.max_jump_deg", 1e-3, 180, "deg", "A frame turning farther from its prediction is lost",
+  v.push_back(Real("tracker.max_jump_deg", 1e-3, 180, "deg",
+                   "A frame turning farther from its prediction is lost",
                    HDRF_FIELD(tracker.max_jump_deg)));
   // Exposure compensation.
-  v.push_back(Expert(Int("exposure.stride", 1, 16, "px", "Every stride-th pixel in x and y is an exposure sample",
+  v.push_back(Expert(Int("exposure.stride", 1, 16, "px",
+                         "Every stride-th pixel in x and y is an exposure sample",
                          HDRF_FIELD(exposure.stride))));
-  v.push_back(Expert(Int("exposure.min_samples", 1, 1e9, "", "Fewer matched samples: the exposure ratio stays 1",
+  v.push_back(Expert(Int("exposure.min_samples", 1, 1e9, "",
+                         "Fewer matched samples: the exposure ratio stays 1",
                          HDRF_FIELD(exposure.min_samples))));
   // Normalized radiance.
-  v.push_back(Int("nr.patch", 3, 255, "px", "Side of the local patch, in pixels of the down-sampled image (odd)",
+  v.push_back(Int("nr.patch", 3, 255, "px",
+                  "Side of the local patch, in pixels of the down-sampled image (odd)",
                   HDRF_FIELD(nr.patch)));
-  v.push_back(Expert(Int("nr.downsample", 1, 8, "", "Local statistics on an image down-sampled by this factor",
+  v.push_back(Expert(Int("nr.downsample", 1, 8, "",
+                         "Local statistics on an image down-sampled by this factor",
                          HDRF_FIELD(nr.downsample))));
-  v.push_back(Expert(Real("nr.min_std", 1e-9, 1, "", "Floor on the local std, relative to the local mean",
-                          HDRF_FIELD(nr.min_std))));
+  v.push_back(
+      Expert(Real("nr.min_std", 1e-9, 1, "", "Floor on the local std, relative to the local mean",
+                  HDRF_FIELD(nr.min_std))));
   // Depth.
-  v.push_back(Bool("depth.bilateral", "Edge-preserving bilateral filter of the depth", HDRF_FIELD(depth.bilateral)));
-  v.push_back(Expert(Real("depth.sigma_space_px", 1e-3, 100, "px", "Bilateral filter: spatial sigma",
-                          HDRF_FIELD(depth.sigma_space_px))));
+  v.push_back(Bool("depth.bilateral", "Edge-preserving bilateral filter of the depth",
+                   HDRF_FIELD(depth.bilateral)));
+  v.push_back(Expert(Real("depth.sigma_space_px", 1e-3, 100, "px",
+                          "Bilateral filter: spatial sigma", HDRF_FIELD(depth.sigma_space_px))));
   v.push_back(Expert(Real("depth.sigma_depth_m", 1e-6, 10, "m", "Bilateral filter: range sigma",
                           HDRF_FIELD(depth.sigma_depth_m))));
-  v.push_back(Expert(Int("depth.radius", 1, imaging::kBilateralMaxRadius, "px", "Bilateral filter: window radius",
-                         HDRF_FIELD(depth.radius))));
-  v.push_back(Expert(Real("depth.max_normal_jump_m", 1e-4, 10, "m", "Normals are undefined across larger depth jumps",
+  v.push_back(Expert(Int("depth.radius", 1, imaging::kBilateralMaxRadius, "px",
+                         "Bilateral filter: window radius", HDRF_FIELD(depth.radius))));
+  v.push_back(Expert(Real("depth.max_normal_jump_m", 1e-4, 10, "m",
+                          "Normals are undefined across larger depth jumps",
                           HDRF_FIELD(depth.max_normal_jump_m))));
   return v;
 }
@@ -246,15 +298,18 @@ std::vector<Setting> MakeSettings() {
 std::string Setting::Range() const {
   auto number = [](double v) { return FormatNumber(v); };
   switch (kind) {
-    case SettingKind::kBool: return "true or false";
+    case SettingKind::kBool:
+      return "true or false";
     case SettingKind::kChoice: {
       std::string t = "one of ";
       for (std::size_t i = 0; i < choices.size(); ++i) t += (i ? ", " : "") + choices[i];
       return t;
     }
     case SettingKind::kIntList:
-      return "1 to " + std::to_string(max_items) + " whole numbers, each " + number(min) + " .. " + number(max);
-    default: return number(min) + " .. " + number(max) + (unit.empty() ? "" : " " + unit);
+      return "1 to " + std::to_string(max_items) + " whole numbers, each " + number(min) + " .. " +
+             number(max);
+    default:
+      return number(min) + " .. " + number(max) + (unit.empty() ? "" : " " + unit);
   }
 }
 
