@@ -15,13 +15,8 @@ namespace hdrf::gui {
 
 std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) {
   // Recorded sequences without a calibrated response fall back to sRGB in the studio (the
-  // status bar says so); the CLI asks for --response srgb explicitly.
-  try {
-    return io::OpenSource(spec, "");
-  } catch (const InputError& e) {
-    if (std::string(e.what()).find("'response'") == std::string::npos) throw;
-    return io::OpenSource(spec, "srgb");
-  }
+  // source's warning says so in the status bar); the CLI asks for --response srgb.
+  return io::OpenSource(spec, "srgb");
 }
 
 ScanWorker::ScanWorker() {
@@ -47,6 +42,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
     QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
     const pipeline::Pipeline& pipe = session_->pipeline();
     if (!pipe.device_note().empty()) msg += " — " + QString::fromStdString(pipe.device_note());
+    for (const std::string& w : source_->sensor().warnings) msg += " — " + QString::fromStdString(w);
     emit stateChanged(false, msg);
   } catch (const std::exception& e) {
     source_.reset();

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "tonemap/display.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -49,32 +50,16 @@ void ToneMapper::DisplayTransform(float* rgb, long pixels) const {
   impl_->cpu->apply(desc);
 }
 
-float LogAverageLuminance(const Float3* rgb, std::size_t n) {
-  double s = 0;
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const float l = Luminance(rgb[i]);
-    if (l > 0 && std::isfinite(l)) {
-      s += std::log(double(l));
-      ++k;
-    }
-  }
-  return k ? float(std::exp(s / double(k))) : 1.f;
-}
-
 namespace {
 // Exposure and operator in linear light; result in [0, 1] per channel.
 void ToLinearDisplay(const Float3* in, std::size_t n, const ToneSettings& s, std::vector<float>& out) {
-  const float key = s.auto_key ? 0.18f / LogAverageLuminance(in, n) : 1.f;
+  const float key = s.auto_key ? 0.18f / tonemap::LogAverageLuminance(in, n) : 1.f;
   const float scale = key * std::exp2(s.exposure_stops);
   out.resize(n * 3);
   for (std::size_t i = 0; i < n; ++i) {
     Float3 c = in[i] * scale;
     if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) c = {0, 0, 0};
-    if (s.op == ToneSettings::Operator::kReinhard) {
-      const float l = Luminance(c);
-      if (l > 0) c = c * (1.f / (1.f + l));
-    }
+    if (s.op == ToneSettings::Operator::kReinhard) c = tonemap::ReinhardPixel(c);
     const float v[3] = {c.x, c.y, c.z};
     for (int k = 0; k < 3; ++k) {
       float x = std::clamp(v[k], 0.f, 1.f);

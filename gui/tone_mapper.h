@@ -46,7 +46,4 @@ class ToneMapper {
   std::unique_ptr<Impl> impl_;
 };
 
-// Log-average luminance of the non-zero pixels (1 when there are none).
-float LogAverageLuminance(const Float3* rgb, std::size_t n);
-
 }  // namespace hdrf::gui

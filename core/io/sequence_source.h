@@ -22,8 +22,14 @@ class SequenceFrameSource : public pipeline::FrameSource {
     return true;
   }
   const SensorInfo& sensor() const override { return sensor_; }
-  // The documented fallback for sequences without calibration (`--response srgb`).
-  void set_response(const radiometry::InverseResponse& r) { sensor_.response = r; }
+  // The documented fallback for sequences without calibration (`--response srgb`): the
+  // sRGB curve, with a warning that says so.
+  void AssumeSrgbResponse() {
+    sensor_.response = radiometry::InverseResponse::Srgb();
+    sensor_.warnings.push_back((seq_.folder() / "sensor.json").string() +
+                               " has no 'response' calibration: the sRGB curve is assumed, so the HDR "
+                               "radiance is only as good as that guess");
+  }
   std::string description() const override { return "sequence " + seq_.folder().string(); }
   const SequenceReader& reader() const { return seq_; }
 

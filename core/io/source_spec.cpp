@@ -43,7 +43,7 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
   auto seq = std::make_unique<SequenceFrameSource>(spec);
   if (!seq->sensor().response) {
     if (response == "srgb") {
-      seq->set_response(radiometry::InverseResponse::Srgb());
+      seq->AssumeSrgbResponse();
     } else {
       throw InputError(std::filesystem::path(spec) / "sensor.json",
                        "has no 'response' calibration: HDR radiance needs the camera response. "

@@ -12,32 +12,34 @@ float SrgbEncode(float v) {
 
 namespace {
 std::uint8_t To8(float v) { return std::uint8_t(std::lround(SrgbEncode(v) * 255.f)); }
-bool Usable(Float3 c) {
-  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && Luminance(c) > 0;
-}
 }  // namespace
 
-ColorImage Reinhard(const RadianceImage& radiance, float key) {
-  double log_sum = 0;
-  long n = 0;
-  for (std::size_t i = 0; i < radiance.size(); ++i)
-    if (Usable(radiance[i])) {
-      log_sum += std::log(1e-6 + Luminance(radiance[i]));
-      ++n;
+float LogAverageLuminance(const Float3* rgb, std::size_t n) {
+  double s = 0;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float l = Luminance(rgb[i]);
+    if (l > 0 && std::isfinite(l)) {
+      s += std::log(double(l));
+      ++k;
     }
-  const float log_avg = n ? float(std::exp(log_sum / double(n))) : 1.f;
-  const float scale = key / log_avg;
+  }
+  return k ? float(std::exp(s / double(k))) : 1.f;
+}
+
+Float3 ReinhardPixel(Float3 c) {
+  if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) return {0, 0, 0};
+  c = {std::max(0.f, c.x), std::max(0.f, c.y), std::max(0.f, c.z)};
+  const float l = Luminance(c);
+  return l > 0 ? c * (1.f / (1.f + l)) : Float3{0, 0, 0};
+}
+
+ColorImage Reinhard(const RadianceImage& radiance, float key) {
+  const float scale = key / LogAverageLuminance(radiance.data(), radiance.size());
   ColorImage out(radiance.width(), radiance.height());
   for (std::size_t i = 0; i < radiance.size(); ++i) {
-    const Float3 c = radiance[i];
-    if (!Usable(c)) {
-      out[i] = {0, 0, 0};
-      continue;
-    }
-    const float l = Luminance(c) * scale;
-    const float ratio = (l / (1.f + l)) / Luminance(c);
-    out[i] = {To8(std::max(0.f, c.x) * ratio), To8(std::max(0.f, c.y) * ratio),
-              To8(std::max(0.f, c.z) * ratio)};
+    const Float3 d = ReinhardPixel(radiance[i] * scale);
+    out[i] = {To8(d.x), To8(d.y), To8(d.z)};
   }
   return out;
 }

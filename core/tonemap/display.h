@@ -9,9 +9,16 @@ namespace hdrf::tonemap {
 // sRGB encoding of a linear value in [0, 1].
 float SrgbEncode(float linear);
 
+// Log-average luminance (Rec. 709) of the finite, positive pixels; 1 where there are none.
+float LogAverageLuminance(const Float3* rgb, std::size_t n);
+
+// Reinhard's global curve on one pixel already scaled by the exposure: c / (1 + L(c)),
+// colour ratios kept, in linear light; non-finite or negative input gives black. The one
+// definition the reports, the PLY display colours and the studio's views use.
+Float3 ReinhardPixel(Float3 scaled);
+
 // Global Reinhard operator: scales the image so that its log-average luminance maps to
-// `key`, compresses L / (1 + L), keeps colour ratios, encodes sRGB. Non-finite and
-// negative input maps to black.
+// `key`, applies ReinhardPixel, encodes sRGB.
 ColorImage Reinhard(const RadianceImage& radiance, float key = 0.18f);
 
 // Depth in metres to colour (near = yellow, far = dark blue; 0 = no data is black) over

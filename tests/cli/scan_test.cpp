@@ -97,6 +97,7 @@ TEST(ScanErrors, MissingCalibrationBadSettingsAndOptionFiles) {
   EXPECT_NE(r.output.find("--response srgb"), std::string::npos) << r.output;
   r = RunCli("scan " + seq + " --out " + (dir / "o2").string() + " --response srgb --volume-res 64 --volume-size 8");
   EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("the sRGB curve is assumed"), std::string::npos) << r.output;  // said, not silent
   EXPECT_TRUE(fs::exists(dir / "o2" / "mesh.ply"));
   // Impossible settings.
   r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --volume-size 0");
