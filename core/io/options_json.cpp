@@ -68,7 +68,12 @@ void Apply(const std::filesystem::path& file, pipeline::PipelineOptions& o, cons
   const Setting* s = nullptr;
   for (const Setting& c : pipeline::Settings())
     if (c.key == k) s = &c;
-  if (!s) throw InputError(file, "unknown setting '" + key + "'");
+  if (!s) {
+    for (const Setting& c : pipeline::Settings())
+      if (c.key.rfind(key + ".", 0) == 0)
+        throw InputError(file, "'" + key + "' is a section: it must be an object of settings, found " + v.dump());
+    throw InputError(file, "unknown setting '" + key + "'");
+  }
   try {
     s->set(o, ValueText(file, *s, v));
   } catch (const InputError&) {

@@ -130,6 +130,9 @@ TEST(ScanErrors, MissingCalibrationBadSettingsAndOptionFiles) {
   r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --options " + (dir / "opts.json").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("opts.json: 'volume.resolution' must be a whole number"), std::string::npos) << r.output;
+  test::WriteText(dir / "opts.json", R"({"volume": 5})");
+  r = RunCli("scan synthetic:frames=2 --out " + (dir / "o3").string() + " --options " + (dir / "opts.json").string());
+  EXPECT_NE(r.output.find("'volume' is a section"), std::string::npos) << r.output;
   // A frame that goes missing midway: the model so far is kept, the error is reported.
   fs::remove(dir / "seq" / "rgb" / (std::string("1.133333") + ".png"));
   r = RunCli("scan " + seq + " --out " + (dir / "o4").string() + " --response srgb --volume-res 64 --volume-size 8");
