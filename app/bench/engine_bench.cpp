@@ -37,21 +37,21 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
       row.c = c;
       {
         ScanSession session(po, src.sensor().camera, src.sensor());
+        double visible = 0;
         std::chrono::steady_clock::time_point t0;
         for (std::size_t i = 0; i < frames.size(); ++i) {
           if (int(i) == kWarmup) t0 = std::chrono::steady_clock::now();
           session.Process(frames[i]);
+          if (int(i) >= kWarmup) visible += double(session.pipeline().last_visible_bricks());
         }
         const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         Pipeline& pipe = session.pipeline();
-        double se = 0, visible = 0;
+        double se = 0;
         for (std::size_t i = 0; i < frames.size(); ++i) {
           const FrameReport& r = session.reports()[i];
           const Pose truth = T0inv * *frames[i].T_world_camera_true;
           se += (truth.translation() - r.T_world_camera.translation()).squaredNorm();
-          if (int(i) < kWarmup) continue;
-          visible += double(r.visible_bricks);
-          row.ms += r.ms;
+          if (int(i) >= kWarmup) row.ms += r.ms;
         }
         row.lost = session.lost();
         const double n = o.frames;

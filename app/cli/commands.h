@@ -1,17 +1,9 @@
 // Subcommands of the `hdrfusion` tool. Each registers its options on the parent app.
 #pragma once
 
-#include <CLI/CLI.hpp>
-#include <functional>
-#include <string>
-#include <vector>
+#include "cli/run_commands.h"
 
 namespace hdrf::cli {
-
-struct Command {
-  CLI::App* app;            // the subcommand, to ask whether it was chosen
-  std::function<int()> run;  // runs it; returns the exit status
-};
 
 Command AddInfoCommand(CLI::App& app);
 Command AddRadianceCommand(CLI::App& app);

@@ -1,11 +1,9 @@
 // hdrfusion: the command-line face of HDRFusion Studio. Everything the studio does can be
 // done here, headless.
-#include <cstdio>
-#include <exception>
 #include <vector>
 
 #include "cli/commands.h"
-#include "common/error.h"
+#include "cli/run_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"HDRFusion: HDR RGB-D scanning for auto-exposure cameras", "hdrfusion"};
@@ -21,20 +19,5 @@ int main(int argc, char** argv) {
       hdrf::cli::AddMergeCommand(app),
       hdrf::cli::AddBenchCommand(app),
   };
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
-    for (const auto& c : commands)
-      if (c.app->parsed()) return c.run();
-  } catch (const hdrf::Error& e) {
-    std::fprintf(stderr, "hdrfusion: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hdrfusion: unexpected error: %s\n", e.what());
-    return 2;
-  }
-  return 0;
+  return hdrf::cli::Run(app, commands, argc, argv);
 }

@@ -1,11 +1,9 @@
 // hdrfusion-experiments: the paper's experiments and the figures of docs/results, apart from
 // the product (not installed by the package). Every subcommand writes only under --out.
-#include <cstdio>
-#include <exception>
 #include <memory>
 #include <vector>
 
-#include "common/error.h"
+#include "cli/run_commands.h"
 #include "experiments.h"
 
 namespace {
@@ -86,20 +84,5 @@ int main(int argc, char** argv) {
 
   commands.push_back(AddContactSheetCommand(app));
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
-    for (const auto& c : commands)
-      if (c.app->parsed()) return c.run();
-  } catch (const hdrf::Error& e) {
-    std::fprintf(stderr, "hdrfusion-experiments: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hdrfusion-experiments: unexpected error: %s\n", e.what());
-    return 2;
-  }
-  return 0;
+  return hdrf::cli::Run(app, commands, argc, argv);
 }

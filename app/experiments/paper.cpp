@@ -64,6 +64,7 @@ std::string HeadlineTable(const json& tracking) {
 }  // namespace
 
 int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data_dir) {
+  CheckTrackingArgs(a);  // a wrong --peers is found before the hour-long run, not in step 3
   const fs::path out = a.out;
   fs::create_directories(out);
   const auto t0 = std::chrono::steady_clock::now();

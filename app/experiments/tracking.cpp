@@ -88,17 +88,21 @@ struct Row {
 
 }  // namespace
 
-int RunTrackingExperiment(const TrackingExperimentArgs& a) {
+void CheckTrackingArgs(const TrackingExperimentArgs& a) {
   if (a.out.empty()) throw SettingError("--out", "names the results folder and is required");
+  if (!a.peers_program.empty() && !fs::exists(a.peers_program))
+    throw SettingError("--peers", "'" + a.peers_program + "' does not exist (hdrfusion-peers is built where "
+                                  "tools/install_deps.sh --peers installed OpenCV contrib and Open3D)");
+}
+
+int RunTrackingExperiment(const TrackingExperimentArgs& a) {
+  CheckTrackingArgs(a);  // before anything is written
+  const fs::path peers = a.peers_program;
   const fs::path out = a.out;
   fs::create_directories(out);
   // The sequences everyone reads: where asked (kept), else a temporary folder removed after.
   TemporaryFolder scratch(a.work.empty() ? "hdrfusion-tracking" : "");
   const fs::path work = a.work.empty() ? scratch.path() : fs::path(a.work);
-  const fs::path peers = a.peers_program;
-  if (!peers.empty() && !fs::exists(peers))
-    throw SettingError("--peers", "'" + a.peers_program + "' does not exist (hdrfusion-peers is built where "
-                                  "tools/install_deps.sh --peers installed OpenCV contrib and Open3D)");
   if (peers.empty())
     std::fprintf(stderr, "tracking: peers not run (--peers names the hdrfusion-peers program to run them)\n");
   json all = json::object();

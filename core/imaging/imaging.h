@@ -1,5 +1,6 @@
-// Per-frame image processing: radiance and confidence, normalized radiance, pyramids, depth
-// filtering, vertex and normal maps (docs/architecture.md, steps 2-3).
+// Per-frame image processing: depth filtering, pyramid steps, vertex and normal maps.
+// (Radiance and confidence: radiometry/radiance.h; normalized radiance:
+// normalized_radiance/normalized_radiance.h.)
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
-// Per-pixel steps of imaging, shared by the CPU loops (imaging.cpp) and the CUDA kernels
-// (imaging_cuda.cu). Both backends call exactly these functions, so they agree to the bit
+// Per-pixel steps of imaging, shared by the drivers of both devices (imaging_driver.h,
+// tracking/pyramid_driver.h). Both backends call exactly these functions, so they agree to the bit
 // wherever the arithmetic is plain IEEE (the CUDA build is compiled without FMA contraction).
 #pragma once
 

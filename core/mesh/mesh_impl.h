@@ -1,5 +1,5 @@
 // Per-cube and per-edge steps of surface extraction (marching tetrahedra), shared by the CPU
-// mesher (mesh.cpp) and the CUDA one (pipeline/cuda_backend.cu). A vertex is named by the
+// mesher (mesh.cpp) and the CUDA one (mesh_cuda.cu). A vertex is named by the
 // voxel edge it lies on (a 64-bit key), so both backends build the same mesh: vertices in
 // key order, triangles in cube order (bricks in slot order, voxels in memory order).
 #pragma once

@@ -28,7 +28,8 @@ class CpuBackend final : public Backend {
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
     const int w = color.width(), h = color.height();
-    color_ = color.Clone();
+    // Only the brightness-constancy tracker looks at the colour again (stage 2).
+    if (o_.tracker.kind == tracking::TrackerKind::kIntensity) color_ = color.Clone();
     radiance_ = RadianceImage(w, h);
     conf_ = Image<float>(w, h);
     maxconf_ = Image<float>(w, h);
@@ -165,7 +166,7 @@ class CpuBackend final : public Backend {
  private:
   const PipelineOptions o_;
   PinholeCamera cam_;
-  ColorImage color_;
+  ColorImage color_;  // the frame's colour, kept for the intensity tracker only
   std::vector<float> inverse_, pcf_;
   volume::Volume volume_;
   imaging::BilateralTables bilateral_;

@@ -133,7 +133,6 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   if (!rep.tracking.lost) {
     b.Integrate(pose_, float(t_ratio));
     rep.fused = true;
-    rep.visible_bricks = b.LastVisibleBricks();
   }
   rep.allocated_bricks = b.AllocatedBricks();
   const auto t5 = now();

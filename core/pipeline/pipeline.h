@@ -49,7 +49,6 @@ struct FrameReport {
   long exposure_samples = 0;
   StageTimes ms;
   std::size_t allocated_bricks = 0;
-  std::size_t visible_bricks = 0;         // bricks this frame updated (0 when not fused)
 };
 
 struct VolumeStats {
@@ -74,6 +73,8 @@ class Pipeline {
   const Pose& pose() const { return pose_; }
   int frames() const { return index_; }
   VolumeStats volume_stats() const;
+  // Bricks the last fused frame updated (on CUDA a read-back: for benchmarks, not per frame).
+  std::size_t last_visible_bricks() const { return backend_->LastVisibleBricks(); }
 
   // Copies out of the backend (downloads on CUDA):
   // the model ray cast from a pose (radiance, normals, depth, NR);

@@ -1,7 +1,7 @@
 // Camera tracking: Gauss-Newton on SE(3), coarse to fine, on the normalized-radiance
 // residual weighted by the pixel confidence (the paper's error function), point-to-plane
-// ICP, or both; the brightness-constancy baseline on raw intensity; and exposure
-// compensation after tracking.
+// ICP, or both; the brightness-constancy baseline on raw intensity; tracking health.
+// (Exposure compensation after tracking: exposure/exposure.h.)
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // Per-pixel Gauss-Newton terms of the tracker, shared by the CPU loops (tracking.cpp) and
-// the CUDA reductions (pipeline/cuda_engine.cu): the same residual, Jacobian and robust
-// weight on both backends; only the order of the final sums differs.
+// the CUDA reductions (tracking_cuda.cu): the same residual, Jacobian and robust weight on
+// both backends; only the order of the final sums differs.
 #pragma once
 
 #include "common/camera.h"

@@ -1,5 +1,5 @@
-// Per-voxel and per-ray steps of the volume, shared by the CPU loops (volume.cpp) and the
-// CUDA kernels (volume_cuda.cu): sampling, integration of one voxel, brick marking along
+// Per-voxel and per-ray steps of the volume, shared by the CPU (volume.cpp) and the GPU
+// (volume_cuda.cu, and raycast_driver.h on both): sampling, integration of one voxel, brick marking along
 // one depth ray, and ray casting of one pixel.
 #pragma once
 

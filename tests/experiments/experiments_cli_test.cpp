@@ -26,12 +26,15 @@ TEST(Experiments, EverySubcommandNeedsItsOutputFolder) {
     EXPECT_NE(r.status, 0) << sub;
     EXPECT_NE(r.output.find("--out"), std::string::npos) << sub << ": " << r.output;
   }
-  const auto r = RunExperiments("calibration --out /tmp/x");
+  test::TempDir tmp;
+  const std::string out = (tmp / "results").string();
+  const auto r = RunExperiments("calibration --out " + out);
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--data"), std::string::npos) << r.output;
-  const auto peers = RunExperiments("tracking --frames 5 --out /tmp/x --peers /nonexistent/hdrfusion-peers");
+  const auto peers = RunExperiments("tracking --frames 5 --out " + out + " --peers /nonexistent/hdrfusion-peers");
   EXPECT_EQ(peers.status, 1);
   EXPECT_NE(peers.output.find("/nonexistent/hdrfusion-peers"), std::string::npos) << peers.output;
+  EXPECT_FALSE(fs::exists(out)) << "nothing is written before the inputs are checked";
 }
 
 }  // namespace
