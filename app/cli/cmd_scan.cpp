@@ -12,6 +12,7 @@
 #include "cli/progress.h"
 #include "cli/setting_flags.h"
 #include "io/source_spec.h"
+#include "sensors/live_source.h"
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
@@ -65,7 +66,9 @@ Command AddScanCommand(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("scan", "Track, fuse and mesh a sequence or the synthetic sensor");
-  cmd->add_option("SOURCE", a->source, "Sequence folder, or synthetic:[scene=room,seed=1,frames=300,ae=smooth,size=320x240]")
+  cmd->add_option("SOURCE", a->source, "Sequence folder, synthetic:[scene=room,seed=1,frames=300,ae=smooth,size=320x240], "
+                  "openni:[device=URI|SERIAL,mode=vga|qvga,ae=on|off,awb=on|off,exposure=MS,gain=N,frames=N] "
+                  "(a live camera, docs/sensors.md) or a recording FILE.oni")
       ->required();
   cmd->add_option("--out", a->out, "Output folder (created; existing outputs are replaced)")->required();
   cmd->add_option("--options", a->options, "JSON file of engine settings (docs/formats.md); the flags override it");
@@ -80,7 +83,7 @@ Command AddScanCommand(CLI::App& app) {
     if (a->frame_to_frame) o.tracker.frame_to_model = false;
     flags->Apply(o);
     o.Check();
-    auto source = io::OpenSource(a->source, a->response);
+    auto source = sensors::OpenAnySource(a->source, a->response);
     const fs::path out = a->out;
     std::error_code ec;
     fs::create_directories(out, ec);
@@ -89,7 +92,10 @@ Command AddScanCommand(CLI::App& app) {
     pipeline::ScanSession session(o, source->sensor().camera, source->sensor());
     pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
-    const int total = a->max_frames > 0 ? std::min(a->max_frames, source->size()) : source->size();
+    const int total = a->max_frames > 0 ? (source->size() < 0 ? a->max_frames : std::min(a->max_frames, source->size()))
+                                        : source->size();
+    if (total < 0)
+      throw SettingError("SOURCE", "a live source runs until stopped: give frames=N in its spec or --max-frames N");
     std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm), on the %s\n",
                  source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
                  o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m(),

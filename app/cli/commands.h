@@ -13,5 +13,7 @@ Command AddCalibrateCommand(CLI::App& app);
 Command AddMergeCommand(CLI::App& app);
 Command AddScanCommand(CLI::App& app);
 Command AddEvalCommand(CLI::App& app);
+Command AddSensorsCommand(CLI::App& app);
+Command AddRecordCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
       hdrf::cli::AddEvalCommand(app),
       hdrf::cli::AddCalibrateCommand(app),
       hdrf::cli::AddMergeCommand(app),
+      hdrf::cli::AddSensorsCommand(app),
+      hdrf::cli::AddRecordCommand(app),
       hdrf::cli::AddBenchCommand(app),
   };
   return hdrf::cli::Run(app, commands, argc, argv);

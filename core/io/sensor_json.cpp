@@ -106,6 +106,21 @@ SensorInfo ReadSensorJson(const std::filesystem::path& file) {
         throw InputError(file, "'hdrfusion.synthetic' must be {\"scene\": name, \"seed\": unsigned 32-bit number}");
       s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
     }
+    if (own.contains("device")) {
+      const json& dev = own["device"];
+      if (!dev.is_object() || !dev.contains("serial") || !dev["serial"].is_string())
+        throw InputError(file, "'hdrfusion.device' must be an object with a string 'serial'");
+      SensorInfo::Device d;
+      d.serial = dev["serial"].get<std::string>();
+      if (dev.contains("name")) {
+        if (!dev["name"].is_string()) throw InputError(file, "'hdrfusion.device.name' must be a string");
+        d.name = dev["name"].get<std::string>();
+      }
+      if (dev.contains("exposure_ms_per_unit"))
+        d.exposure_ms_per_unit =
+            Positive(file, dev["exposure_ms_per_unit"], "hdrfusion.device.exposure_ms_per_unit");
+      s.device = d;
+    }
   }
   if (j.contains("synthetic")) {
     // Sequences written before the "hdrfusion" block held {"scene", "seed"} here; other
@@ -140,7 +155,13 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
     s.noise->Check(file.string());
     j["noise"] = {{"sigma_s", s.noise->sigma_s}, {"sigma_c", s.noise->sigma_c}};
   }
-  if (s.synthetic) j["hdrfusion"] = {{"synthetic", {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}}}};
+  if (s.synthetic) j["hdrfusion"]["synthetic"] = {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}};
+  if (s.device) {
+    json dev = {{"serial", s.device->serial}};
+    if (!s.device->name.empty()) dev["name"] = s.device->name;
+    if (s.device->exposure_ms_per_unit) dev["exposure_ms_per_unit"] = *s.device->exposure_ms_per_unit;
+    j["hdrfusion"]["device"] = dev;
+  }
   WriteFileAtomically(file, j.dump(2) + "\n");
 }
 

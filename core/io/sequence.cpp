@@ -22,13 +22,13 @@ std::vector<double> TimestampsOf(const std::vector<T>& v) {
   return t;
 }
 
+}  // namespace
+
 std::string TimestampName(double t) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6f", t);
   return buf;
 }
-
-}  // namespace
 
 SequenceReader::SequenceReader(const fs::path& folder, SequenceReadOptions options)
     : folder_(folder) {

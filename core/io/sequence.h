@@ -68,6 +68,9 @@ class SequenceReader {
   std::size_t unmatched_color_ = 0;
 };
 
+// The file stem of a frame at a timestamp (rgb/<stem>.png, depth/<stem>.png): "%.6f" seconds.
+std::string TimestampName(double t);
+
 // Writes a sequence frame by frame. Lists are appended and flushed after each frame, so a
 // sequence cut short (crash, full disk) is still a valid, shorter sequence.
 class SequenceWriter {

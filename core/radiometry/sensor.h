@@ -23,6 +23,15 @@ struct SensorInfo {
     std::uint32_t seed = 1;
   };
   std::optional<Synthetic> synthetic;
+  // A live camera's profile ("hdrfusion": {"device": {...}}): the device it was measured
+  // on, and how its raw exposure unit maps to milliseconds (OpenNI2 reports exposure in a
+  // device unit; without the mapping, exposures set by hand cannot be recorded as times).
+  struct Device {
+    std::string serial;
+    std::string name;
+    std::optional<double> exposure_ms_per_unit;
+  };
+  std::optional<Device> device;
   // What the reader ignored and the user should know (a block of another tool under a name
   // the project also uses), one line each, naming the file.
   std::vector<std::string> warnings;

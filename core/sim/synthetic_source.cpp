@@ -70,15 +70,65 @@ SensorInfo SyntheticSource::sensor() const {
   return s;
 }
 
-SimFrame SyntheticSource::Next() {
+SimFrame SyntheticSource::Next(std::optional<double> exposure_ms) {
   if (done()) throw Error("synthetic source: all " + std::to_string(size()) + " frames delivered");
   const int i = next_++;
+  const double auto_ms = o_.sweep ? o_.sweep_exposures_ms[std::size_t(i / o_.sweep_repeats)]
+                                  : ae_.Next(i, last_metered_);
+  SimFrame f = RenderView(i);
+  f.exposure_ms = exposure_ms ? *exposure_ms : auto_ms;
+  f.color = Expose(f.radiance, f.exposure_ms, Hash(o_.seed, std::uint32_t(i)));
+  last_metered_ = MeterCentre(f.radiance);
+  return f;
+}
+
+double MeterCentre(const RadianceImage& radiance) {
+  // Mean luminance of the central third of the image.
+  const int w = radiance.width(), h = radiance.height();
+  double sum = 0;
+  long count = 0;
+  for (int y = h / 3; y < 2 * h / 3; ++y)
+    for (int x = w / 3; x < 2 * w / 3; ++x) {
+      sum += Luminance(radiance(x, y));
+      ++count;
+    }
+  return count ? sum / double(count) : -1;
+}
+
+ColorImage SyntheticSource::Expose(const RadianceImage& radiance, double exposure_ms,
+                                   std::uint32_t noise_key) const {
+  // I = f(L * exposure + n_s + n_c), quantised and clipped.
+  const int w = radiance.width(), h = radiance.height();
+  ColorImage color(w, h);
+  const float exposure = float(exposure_ms);
+  const auto& n = o_.noise;
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t px = std::uint32_t(y * w + x);
+      const Float3 L = radiance(x, y);
+      const float Lc[3] = {L.x, L.y, L.z};
+      std::uint8_t out[3];
+      for (int c = 0; c < 3; ++c) {
+        const float R = Lc[c] * exposure;
+        const float sd = std::sqrt(R * n.sigma_s[c] * n.sigma_s[c] + n.sigma_c[c] * n.sigma_c[c]);
+        const float g = Gaussian(Hash(noise_key, px * 4u + std::uint32_t(c), kColorNoise));
+        out[c] = forward_.Level(c, R + sd * g);
+      }
+      color(x, y) = {out[0], out[1], out[2]};
+    }
+  }
+  return color;
+}
+
+SimFrame SyntheticSource::RenderView(int i) const {
+  if (i < 0 || i >= size())
+    throw Error("synthetic source: view " + std::to_string(i) + " outside the path of " +
+                std::to_string(size()) + " frames");
   SimFrame f;
   f.index = i;
   f.timestamp = path_.timestamp(i);
   f.T_world_camera = path_.T_world_camera(i);
-  f.exposure_ms = o_.sweep ? o_.sweep_exposures_ms[std::size_t(i / o_.sweep_repeats)]
-                           : ae_.Next(i, last_metered_);
   const int w = o_.width, h = o_.height;
   const PinholeCamera cam = camera_;
   const RigidTransform T = ToRigidTransform(f.T_world_camera);
@@ -102,31 +152,10 @@ SimFrame SyntheticSource::Next() {
     }
   }
 
-  // 2. Colour: I = f(L * exposure + n_s + n_c), quantised and clipped.
-  f.color = ColorImage(w, h);
-  const float exposure = float(f.exposure_ms);
-  const std::uint32_t frame_key = Hash(o_.seed, std::uint32_t(i));
-  const auto& n = o_.noise;
-#pragma omp parallel for schedule(static)
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const std::uint32_t px = std::uint32_t(y * w + x);
-      const Float3 L = f.radiance(x, y);
-      const float Lc[3] = {L.x, L.y, L.z};
-      std::uint8_t out[3];
-      for (int c = 0; c < 3; ++c) {
-        const float R = Lc[c] * exposure;
-        const float sd = std::sqrt(R * n.sigma_s[c] * n.sigma_s[c] + n.sigma_c[c] * n.sigma_c[c]);
-        const float g = Gaussian(Hash(frame_key, px * 4u + std::uint32_t(c), kColorNoise));
-        out[c] = forward_.Level(c, R + sd * g);
-      }
-      f.color(x, y) = {out[0], out[1], out[2]};
-    }
-  }
-
-  // 3. Depth: dropouts (range, emitters, grazing angles, edges), axial noise, disparity
+  // 2. Depth: dropouts (range, emitters, grazing angles, edges), axial noise, disparity
   //    quantisation.
   f.depth = DepthRawImage(w, h);
+  const std::uint32_t frame_key = Hash(o_.seed, std::uint32_t(i));
   const DepthNoiseOptions& dn = o_.depth;
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < h; ++y) {
@@ -163,15 +192,6 @@ SimFrame SyntheticSource::Next() {
   for (std::size_t k = 0; k < f.depth_true.size(); ++k)
     if (emitter[k] || f.depth_true[k] < dn.min_m || f.depth_true[k] > dn.max_m) f.depth_true[k] = 0;
 
-  // 4. Metering for the next frame: mean luminance of the central third of the image.
-  double sum = 0;
-  long count = 0;
-  for (int y = h / 3; y < 2 * h / 3; ++y)
-    for (int x = w / 3; x < 2 * w / 3; ++x) {
-      sum += Luminance(f.radiance(x, y));
-      ++count;
-    }
-  last_metered_ = count ? sum / double(count) : -1;
   return f;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "common/image.h"
@@ -57,8 +58,17 @@ class SyntheticSource {
 
   int size() const { return path_.size(); }
   bool done() const { return next_ >= size(); }
-  // Renders the next frame. Frames come in order (auto exposure has state).
-  SimFrame Next();
+  // Renders the next frame. Frames come in order (auto exposure has state). An exposure
+  // given replaces auto exposure's choice for this frame (a camera with AE switched off);
+  // auto exposure still meters it.
+  SimFrame Next(std::optional<double> exposure_ms = std::nullopt);
+
+  // The parts of a frame, for a device that serves the scene live (the test OpenNI2
+  // driver): view i of the path without colour (pose, radiance, raw and true depth;
+  // deterministic, no auto-exposure state), and the colour the sensor forms from radiance
+  // at an exposure, with noise drawn from `noise_key` (Next uses Hash(seed, i)).
+  SimFrame RenderView(int i) const;
+  ColorImage Expose(const RadianceImage& radiance, double exposure_ms, std::uint32_t noise_key) const;
 
   const SimOptions& options() const { return o_; }
   const Scene& scene() const { return scene_; }
@@ -76,6 +86,9 @@ class SyntheticSource {
   int next_ = 0;
   double last_metered_ = -1;
 };
+
+// What auto exposure meters: the mean luminance of the central third of the image.
+double MeterCentre(const RadianceImage& radiance);
 
 // The camera of the built-in profile scaled to width x height.
 PinholeCamera SimCamera(int width, int height);
