@@ -35,6 +35,14 @@ pipeline::FrameInput ToInput(const LiveFrame& f, double depth_scale, std::option
   return in;
 }
 
+// FNV-1a over the colour bytes: how the .oni exposure sidecar names a frame.
+std::uint64_t Fingerprint(const ColorImage& c) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto* p = reinterpret_cast<const std::uint8_t*>(c.data());
+  for (std::size_t k = 0, n = c.size() * 3; k < n; ++k) h = (h ^ p[k]) * 1099511628211ull;
+  return h;
+}
+
 }  // namespace
 
 bool IsLiveSpec(const std::string& spec) { return spec.rfind("openni:", 0) == 0; }
@@ -111,6 +119,7 @@ void LiveFrameSource::ApplyExposure(const LiveOptions& o) {
   }
   if (raw) camera_->SetExposure(*raw);
   if (o.gain) camera_->SetGain(*o.gain);
+  camera_->Flush();  // frames from now on are taken under these settings
 }
 
 std::optional<double> LiveFrameSource::ExposureMs(const LiveFrame& f) const {
@@ -150,7 +159,10 @@ OniRecording::OniRecording(const fs::path& file, OpenNiCamera& camera, const Sen
   io::WriteSensorJson(fs::path(file.string() + ".sensor.json"), sensor);
   impl_->sidecar.open(file.string() + ".exposure.txt");
   if (!impl_->sidecar) throw InputError(file.string() + ".exposure.txt", "cannot be opened for writing");
-  impl_->sidecar << "# colour frame number, exposure_ms, gain (frames not listed: exposure unknown)\n";
+  // The player renumbers frames and rebases timestamps, so frames are known by their
+  // content: a fingerprint of the colour image (the recording is lossless).
+  impl_->sidecar << "# colour fingerprint (FNV-1a 64, hex), exposure_ms, gain, device frame number; frames not "
+                    "listed: exposure unknown\n";
   camera.StartOniRecording(file.string());
 }
 
@@ -158,7 +170,8 @@ OniRecording::~OniRecording() { Stop(); }
 
 void OniRecording::NoteFrame(const LiveFrame& f, std::optional<double> exposure_ms, std::optional<double> gain) {
   if (!exposure_ms || !impl_->sidecar.is_open()) return;
-  impl_->sidecar << f.index << ' ' << *exposure_ms << ' ' << gain.value_or(100) << '\n';
+  impl_->sidecar << std::hex << Fingerprint(f.color) << std::dec << ' ' << *exposure_ms << ' ' << gain.value_or(1.0)
+                 << ' ' << f.index << '\n';
   impl_->sidecar.flush();
   if (!impl_->sidecar) throw InputError(impl_->file.string() + ".exposure.txt", "write failed (disk full?)");
 }
@@ -177,7 +190,7 @@ struct OniPlaybackSource::Impl {
   openni::Device device;
   openni::VideoStream color, depth;
   SensorInfo sensor;
-  std::map<int, std::pair<double, double>> exposures;  // frame number -> exposure_ms, gain
+  std::map<std::uint64_t, std::pair<double, double>> exposures;  // fingerprint -> exposure_ms, gain
   int frames = 0, delivered = 0, fps = 30;
   std::deque<LiveFrame> pending_color, pending_depth;
 };
@@ -203,11 +216,11 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
       ++number;
       if (line.empty() || line[0] == '#') continue;
       std::istringstream ls(line);
-      int index;
+      std::uint64_t key;
       double ms, gain;
-      if (!(ls >> index >> ms >> gain) || !(ms > 0))
-        throw InputError(exposure_file, number, "expected 'frame exposure_ms gain'");
-      m.exposures[index] = {ms, gain};
+      if (!(ls >> std::hex >> key >> std::dec >> ms >> gain) || !(ms > 0) || !(gain > 0))
+        throw InputError(exposure_file, number, "expected 'fingerprint exposure_ms gain [device_frame]'");
+      m.exposures[key] = {ms, gain};
     }
   } else {
     m.sensor.warnings.push_back(exposure_file.string() + " is missing: every frame is of unknown exposure");
@@ -270,7 +283,7 @@ bool OniPlaybackSource::Next(pipeline::FrameInput& frame) {
         m.pending_color.pop_front();
         ++m.delivered;
         std::optional<double> exposure;
-        if (auto it = m.exposures.find(f.index); it != m.exposures.end()) exposure = it->second.first;
+        if (auto it = m.exposures.find(Fingerprint(f.color)); it != m.exposures.end()) exposure = it->second.first;
         frame = ToInput(f, m.sensor.depth_scale, exposure);
         return true;
       }

@@ -371,6 +371,11 @@ long OpenNiCamera::dropped() const {
   return impl_->dropped;
 }
 
+void OpenNiCamera::Flush() {
+  std::lock_guard lock(impl_->mutex);
+  impl_->queue.clear();
+}
+
 bool OpenNiCamera::lost() const {
   std::lock_guard lock(impl_->mutex);
   return impl_->lost;
@@ -386,6 +391,7 @@ void OpenNiCamera::StartOniRecording(const std::string& file) {
     m.recorder.destroy();
     throw SensorError(file + ": cannot record the streams: " + openni::OpenNI::getExtendedError());
   }
+  Flush();  // frames read from now on are in the recording
 }
 
 void OpenNiCamera::StopOniRecording() {

@@ -108,6 +108,8 @@ class OpenNiCamera {
   // Colour frames the device numbered but that never reached Read (gaps, full queue).
   long dropped() const;
   bool lost() const;
+  // Discards the frames waiting to be read (taken before a change of settings).
+  void Flush();
 
   // Records both streams to an OpenNI2 .oni file, lossless, until stopped (or destroyed).
   void StartOniRecording(const std::string& file);
