@@ -84,11 +84,15 @@ void SequenceRecorder::Write(const Item& item) {
       if (fs::exists(folder_ / lists[i], ec)) fs::resize_file(folder_ / lists[i], before[i], ec);
     fs::remove(folder_ / "rgb" / (stem + ".png"), ec);
     fs::remove(folder_ / "depth" / (stem + ".png"), ec);
+    const fs::space_info space = fs::space(folder_, ec);
+    const std::string disk = !ec && space.available < 16u * 1024 * 1024
+                                 ? " (the disk is full: " + std::to_string(space.available / 1024) + " kB free)"
+                                 : "";
     std::lock_guard lock(mutex_);
     failed_ = true;
     ++stats_.dropped;
-    stats_.error = std::string(e.what()) + "; the recording stopped after " + std::to_string(stats_.written) +
-                   " complete frames";
+    stats_.error = std::string(e.what()) + disk + "; the recording stopped after " + std::to_string(stats_.written) +
+                   " complete frames, all readable";
   }
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "io/sensor_json.h"
+#include "common/error.h"
 #include "support/test_support.h"
 
 namespace hdrf::io {
@@ -95,6 +96,27 @@ TEST(SensorJson, RoundTripWithResponseAndNoise) {
   EXPECT_EQ(b.response->table, r.table);  // float -> JSON -> float is exact
   EXPECT_EQ(b.noise->sigma_s, s.noise->sigma_s);
   EXPECT_EQ(b.noise->sigma_c, s.noise->sigma_c);
+}
+
+TEST(SensorJson, DeviceBlockRoundTripsAndIsChecked) {
+  TempDir dir;
+  SensorInfo s;
+  s.camera = {640, 480, 540, 540, 319.5f, 239.5f};
+  s.device = SensorInfo::Device{"1406120314", "PrimeSense Carmine", 0.125};
+  s.synthetic = SensorInfo::Synthetic{"room", 3};
+  WriteSensorJson(dir / "sensor.json", s);
+  const SensorInfo b = ReadSensorJson(dir / "sensor.json");
+  ASSERT_TRUE(b.device && b.synthetic);  // both under "hdrfusion", neither lost
+  EXPECT_EQ(b.device->serial, "1406120314");
+  EXPECT_EQ(b.device->name, "PrimeSense Carmine");
+  EXPECT_DOUBLE_EQ(*b.device->exposure_ms_per_unit, 0.125);
+  EXPECT_EQ(b.synthetic->seed, 3u);
+  const std::string base = R"({"camera": {"width": 2, "height": 2, "fx": 1, "fy": 1, "cx": 0, "cy": 0},
+                               "depth": {"scale": 1000}, "hdrfusion": )";
+  WriteText(dir / "a.json", base + R"({"device": {"name": "x"}}})");
+  EXPECT_THROW(ReadSensorJson(dir / "a.json"), hdrf::InputError);  // no serial
+  WriteText(dir / "b.json", base + R"({"device": {"serial": "s", "exposure_ms_per_unit": -1}}})");
+  EXPECT_THROW(ReadSensorJson(dir / "b.json"), hdrf::InputError);
 }
 
 TEST(SensorJson, MissingFileAndInvalidJson) {
