@@ -177,10 +177,11 @@ void MainWindow::BuildControls() {
     }
   });
   auto* sensor = new QComboBox;
-  sensor->addItem(tr("OpenNI2 sensor: none connected"));
+  sensor->addItem(tr("OpenNI2 live: command line only"));
   sensor->setEnabled(false);
-  sensor->setToolTip(tr("Live OpenNI2 capture arrives with the sensor driver; recorded sequences and the "
-                        "synthetic sensor work today"));
+  sensor->setToolTip(tr("Live OpenNI2 cameras work from the command line today (hdrfusion sensors, "
+                        "hdrfusion record, hdrfusion scan openni:...); a recording opens here as a sequence. "
+                        "Live capture in the studio is not built yet."));
   sl->addWidget(source_);
   sl->addWidget(browse);
   sl->addWidget(sensor);
