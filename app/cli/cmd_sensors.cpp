@@ -110,17 +110,15 @@ Command AddRecordCommand(CLI::App& app) {
     long taken = 0;
     const long dropped_before = live.camera().dropped();
     try {
-      pipeline::FrameInput f;
       while (!g_stop && taken < total) {
         if (a->seconds > 0 &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= a->seconds)
           break;
-        live.Next(f);
-        const sensors::LiveFrame& lf = live.last();
+        sensors::LiveFrame lf = live.NextFrame();
         const auto ms = live.ExposureMs(lf);
         const std::optional<double> gain = lf.gain ? std::optional<double>(*lf.gain / 100.0) : std::nullopt;
         if (seq) {
-          seq->Push(lf.Clone(), ms, gain);
+          seq->Push(std::move(lf), ms, gain);
           if (seq->failed()) break;
         } else {
           rec->NoteFrame(lf, ms, gain);

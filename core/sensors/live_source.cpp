@@ -11,6 +11,7 @@
 #include "io/image_io.h"
 #include "io/sensor_json.h"
 #include "io/source_spec.h"
+#include "sensors/frame_pairing.h"
 #include "sim/builtin_sensor.h"
 
 namespace hdrf::sensors {
@@ -128,13 +129,17 @@ std::optional<double> LiveFrameSource::ExposureMs(const LiveFrame& f) const {
   return *f.exposure_raw * *dev->exposure_ms_per_unit;
 }
 
-bool LiveFrameSource::Next(pipeline::FrameInput& frame) {
-  if (options_.frames > 0 && delivered_ >= options_.frames) return false;
+LiveFrame LiveFrameSource::NextFrame() {
   std::optional<LiveFrame> f = camera_->Read(2000ms);
   if (!f) throw SensorError("device '" + camera_->entry().name + "' sent no frame for 2 s");
-  last_ = std::move(*f);
-  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_));
   ++delivered_;
+  return std::move(*f);
+}
+
+bool LiveFrameSource::Next(pipeline::FrameInput& frame) {
+  if (options_.frames > 0 && delivered_ >= options_.frames) return false;
+  last_ = NextFrame();
+  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_));
   return true;
 }
 
@@ -191,8 +196,8 @@ struct OniPlaybackSource::Impl {
   openni::VideoStream color, depth;
   SensorInfo sensor;
   std::map<std::uint64_t, std::pair<double, double>> exposures;  // fingerprint -> exposure_ms, gain
-  int frames = 0, delivered = 0, fps = 30;
-  std::deque<LiveFrame> pending_color, pending_depth;
+  int frames = 0, delivered = 0;
+  std::optional<detail::FramePairer> pairer;
 };
 
 OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_unique<Impl>()) {
@@ -250,7 +255,7 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
     throw InputError(file, "frames are " + std::to_string(cm.getResolutionX()) + "x" + std::to_string(cm.getResolutionY()) +
                                " but its sensor profile says " + std::to_string(m.sensor.camera.width) + "x" +
                                std::to_string(m.sensor.camera.height));
-  m.fps = std::max(1, cm.getFps());
+  m.pairer.emplace(cm.getFps());
   m.frames = pc->getNumberOfFrames(m.color);
   if (m.color.start() != openni::STATUS_OK || m.depth.start() != openni::STATUS_OK)
     throw InputError(file, std::string("streams would not start: ") + openni::OpenNI::getExtendedError());
@@ -270,51 +275,23 @@ std::string OniPlaybackSource::description() const { return "OpenNI2 recording "
 
 bool OniPlaybackSource::Next(pipeline::FrameInput& frame) {
   Impl& m = *impl_;
-  const double tolerance = 0.5 / m.fps;
-  while (m.delivered < m.frames) {
-    // Pair the oldest colour frame with its depth frame.
-    while (!m.pending_color.empty() && !m.pending_depth.empty()) {
-      LiveFrame& c = m.pending_color.front();
-      LiveFrame& d = m.pending_depth.front();
-      if (std::abs(c.timestamp - d.timestamp) <= tolerance) {
-        c.depth_mm = std::move(d.depth_mm);
-        m.pending_depth.pop_front();
-        LiveFrame f = std::move(c);
-        m.pending_color.pop_front();
-        ++m.delivered;
-        std::optional<double> exposure;
-        if (auto it = m.exposures.find(Fingerprint(f.color)); it != m.exposures.end()) exposure = it->second.first;
-        frame = ToInput(f, m.sensor.depth_scale, exposure);
-        return true;
-      }
-      if (c.timestamp < d.timestamp) {
-        m.pending_color.pop_front();  // colour without depth
-        ++m.delivered;
-      } else {
-        m.pending_depth.pop_front();
-      }
+  while (m.delivered + m.pairer->unpaired_color() < m.frames) {
+    if (std::optional<LiveFrame> f = m.pairer->Pop()) {
+      ++m.delivered;
+      std::optional<double> exposure;
+      if (auto it = m.exposures.find(Fingerprint(f->color)); it != m.exposures.end()) exposure = it->second.first;
+      frame = ToInput(*f, m.sensor.depth_scale, exposure);
+      return true;
     }
     openni::VideoStream* streams[2] = {&m.color, &m.depth};
     int ready = -1;
     if (openni::OpenNI::waitForAnyStream(streams, 2, &ready, 2000) != openni::STATUS_OK) return false;  // end
     openni::VideoFrameRef ref;
     if (streams[ready]->readFrame(&ref) != openni::STATUS_OK || !ref.isValid()) return false;
-    LiveFrame f;
-    f.timestamp = double(ref.getTimestamp()) * 1e-6;
-    f.index = ref.getFrameIndex();
-    const int w = ref.getWidth(), h = ref.getHeight();
-    const auto* data = static_cast<const std::uint8_t*>(ref.getData());
-    if (ready == 0) {
-      f.color = ColorImage(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(&f.color(0, y), data + std::size_t(y) * ref.getStrideInBytes(), std::size_t(w) * 3);
-      m.pending_color.push_back(std::move(f));
-    } else {
-      f.depth_mm = DepthRawImage(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(&f.depth_mm(0, y), data + std::size_t(y) * ref.getStrideInBytes(), std::size_t(w) * 2);
-      m.pending_depth.push_back(std::move(f));
-    }
+    if (ready == 0)
+      m.pairer->AddColor(detail::CopyFrame(ref));
+    else
+      m.pairer->AddDepth(detail::CopyFrame(ref));
   }
   return false;
 }

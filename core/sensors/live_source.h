@@ -42,7 +42,11 @@ class LiveFrameSource : public pipeline::FrameSource {
 
   OpenNiCamera& camera() { return *camera_; }
   const Profile& profile() const { return profile_; }
-  // The raw frame behind the last Next (for recording), and its exposure in milliseconds.
+  // The next frame as the device gave it (for recording: no conversion to metres); the
+  // same waits and errors as Next. Counts as delivered.
+  LiveFrame NextFrame();
+  // The raw frame behind the last Next (a scan that also records), and a frame's exposure in
+  // milliseconds (none unless auto exposure was off and the profile gives the unit).
   const LiveFrame& last() const { return last_; }
   std::optional<double> ExposureMs(const LiveFrame& f) const;
   void ApplyExposure(const LiveOptions& o);  // the ae/awb/exposure/gain parts of o

@@ -1,5 +1,7 @@
 #include "sensors/openni_camera.h"
 
+#include "sensors/frame_pairing.h"
+
 #include <OpenNI.h>
 
 #include <algorithm>
@@ -95,7 +97,7 @@ struct OpenNiCamera::Impl : openni::OpenNI::DeviceDisconnectedListener {
   };
   Listener color_listener, depth_listener;
 
-  static constexpr std::size_t kQueue = 8, kPending = 4;
+  static constexpr std::size_t kQueue = 8;
 
   DeviceEntry entry;
   CaptureMode mode;
@@ -106,9 +108,10 @@ struct OpenNiCamera::Impl : openni::OpenNI::DeviceDisconnectedListener {
 
   mutable std::mutex mutex;
   std::condition_variable arrived;
-  std::deque<LiveFrame> pending_color, pending_depth, queue;
+  std::optional<detail::FramePairer> pairer;
+  std::deque<LiveFrame> queue;
   long arrivals = 0;        // paired frames produced
-  long dropped = 0;
+  long dropped = 0;         // besides the pairer's unpaired colour frames
   int last_color_index = -1;
   bool lost = false;
   // The exposure in force, once verified with AE off; frames arriving while a change is
@@ -125,65 +128,28 @@ struct OpenNiCamera::Impl : openni::OpenNI::DeviceDisconnectedListener {
   void OnFrame(openni::VideoStream& stream) {
     openni::VideoFrameRef ref;
     if (stream.readFrame(&ref) != openni::STATUS_OK || !ref.isValid()) return;
-    LiveFrame f;
-    f.timestamp = double(ref.getTimestamp()) * 1e-6;
-    f.index = ref.getFrameIndex();
-    const int w = ref.getWidth(), h = ref.getHeight();
     const bool is_color = ref.getSensorType() == openni::SENSOR_COLOR;
-    if (is_color) {
-      if (ref.getVideoMode().getPixelFormat() != openni::PIXEL_FORMAT_RGB888) return;
-      f.color = ColorImage(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(&f.color(0, y), static_cast<const std::uint8_t*>(ref.getData()) + std::size_t(y) * ref.getStrideInBytes(),
-                    std::size_t(w) * 3);
-    } else {
-      f.depth_mm = DepthRawImage(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(&f.depth_mm(0, y), static_cast<const std::uint8_t*>(ref.getData()) + std::size_t(y) * ref.getStrideInBytes(),
-                    std::size_t(w) * 2);
-    }
+    if (is_color && ref.getVideoMode().getPixelFormat() != openni::PIXEL_FORMAT_RGB888) return;
+    LiveFrame f = detail::CopyFrame(ref);
     std::lock_guard lock(mutex);
     if (is_color) {
       if (last_color_index >= 0 && f.index > last_color_index + 1) dropped += f.index - last_color_index - 1;
       last_color_index = f.index;
       f.exposure_raw = tag_exposure;
       f.gain = tag_gain;
-      pending_color.push_back(std::move(f));
+      pairer->AddColor(std::move(f));
     } else {
-      pending_depth.push_back(std::move(f));
+      pairer->AddDepth(std::move(f));
     }
-    Pair();
-  }
-
-  // Colour and depth of the same moment: equal timestamps, or within half a frame period.
-  void Pair() {
-    const double tolerance = 0.5 / std::max(1, mode.fps);
-    while (!pending_color.empty() && !pending_depth.empty()) {
-      LiveFrame& c = pending_color.front();
-      LiveFrame& d = pending_depth.front();
-      if (std::abs(c.timestamp - d.timestamp) <= tolerance) {
-        c.depth_mm = std::move(d.depth_mm);
-        pending_depth.pop_front();
-        if (queue.size() >= kQueue) {
-          queue.pop_front();
-          ++dropped;
-        }
-        queue.push_back(std::move(c));
-        pending_color.pop_front();
-        ++arrivals;
-        arrived.notify_all();
-      } else if (c.timestamp < d.timestamp) {
-        pending_color.pop_front();  // colour without depth: lost to the scan
+    while (std::optional<LiveFrame> pair = pairer->Pop()) {
+      if (queue.size() >= kQueue) {
+        queue.pop_front();
         ++dropped;
-      } else {
-        pending_depth.pop_front();
       }
+      queue.push_back(std::move(*pair));
+      ++arrivals;
+      arrived.notify_all();
     }
-    while (pending_color.size() > kPending) {
-      pending_color.pop_front();
-      ++dropped;
-    }
-    while (pending_depth.size() > kPending) pending_depth.pop_front();
   }
 
   // Waits until `n` more paired frames arrived (false on timeout or loss).
@@ -268,6 +234,7 @@ std::unique_ptr<OpenNiCamera> OpenNiCamera::Open(const std::string& id, CaptureM
   Impl& m = *cam->impl_;
   m.entry = *found;
   m.mode = mode;
+  m.pairer.emplace(mode.fps);
   const std::string who = "device " + Describe(m.entry);
   if (m.device.open(m.entry.uri.c_str()) != openni::STATUS_OK)
     throw SensorError(who + " could not be opened: " + openni::OpenNI::getExtendedError());
@@ -368,7 +335,7 @@ std::optional<LiveFrame> OpenNiCamera::Read(std::chrono::milliseconds timeout) {
 
 long OpenNiCamera::dropped() const {
   std::lock_guard lock(impl_->mutex);
-  return impl_->dropped;
+  return impl_->dropped + impl_->pairer->unpaired_color();
 }
 
 void OpenNiCamera::Flush() {
