@@ -21,6 +21,7 @@
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSlider>
 #include <QSpinBox>
@@ -34,6 +35,7 @@
 #include "common/error.h"
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
+#include "gui/sensor_panel.h"
 #include "gui/settings_form.h"
 #include "gui/vtk_view.h"
 #include "io/exr.h"
@@ -42,6 +44,16 @@
 namespace hdrf::gui {
 
 namespace {
+
+// A panel in a scroll area: a long form never makes the window taller than the screen.
+QScrollArea* Scrolled(QWidget* w) {
+  auto* area = new QScrollArea;
+  area->setWidget(w);
+  area->setWidgetResizable(true);
+  area->setFrameShape(QFrame::NoFrame);
+  area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  return area;
+}
 
 const char* kSynthRoom = "synthetic:scene=room,frames=300,ae=flicker";
 const char* kSynthDesk = "synthetic:scene=desk,frames=300,ae=smooth";
@@ -84,10 +96,12 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   BuildViews();
   BuildControls();
   BuildStatus();
+  BuildSensorPanel();
   BuildMenus();
   default_state_ = saveState();
   LoadSettings();
   if (!o.source.isEmpty()) source_->setCurrentText(o.source);
+  if (source_->currentText().startsWith("openni:")) ShowCameraPanel();
   if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
   // The scan thread.
   worker_ = new ScanWorker;
@@ -115,6 +129,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   connect(worker_, &ScanWorker::finished, this, [this](int) {
     if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
   });
+  ConnectSensors();
   thread_.start();
   render_timer_ = new QTimer(this);
   connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
@@ -124,6 +139,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
 }
 
 MainWindow::~MainWindow() {
+  hotplug_.reset();  // no more events into this window
   if (worker_) QMetaObject::invokeMethod(worker_, &ScanWorker::Pause, Qt::BlockingQueuedConnection);
   thread_.quit();
   thread_.wait();
@@ -167,7 +183,9 @@ void MainWindow::BuildControls() {
   source_ = new QComboBox;
   source_->setEditable(true);
   source_->addItems({kSynthRoom, kSynthDesk});
-  source_->setToolTip(tr("A sequence folder, or synthetic:key=value,... (scene, seed, frames, ae, exposure, size)"));
+  source_->setToolTip(tr("A sequence folder, a recording FILE.oni, a live camera openni:device=SERIAL,mode=vga "
+                         "(the Live camera panel fills it in), or synthetic:key=value,... (scene, seed, frames, "
+                         "ae, exposure, size)"));
   auto* browse = new QPushButton(tr("Sequence folder…"));
   connect(browse, &QPushButton::clicked, this, [this] {
     const QString dir = QFileDialog::getExistingDirectory(this, tr("Recorded sequence"));
@@ -176,15 +194,8 @@ void MainWindow::BuildControls() {
       ApplyEngineSettings();
     }
   });
-  auto* sensor = new QComboBox;
-  sensor->addItem(tr("OpenNI2 live: command line only"));
-  sensor->setEnabled(false);
-  sensor->setToolTip(tr("Live OpenNI2 cameras work from the command line today (hdrfusion sensors, "
-                        "hdrfusion record, hdrfusion scan openni:...); a recording opens here as a sequence. "
-                        "Live capture in the studio is not built yet."));
   sl->addWidget(source_);
   sl->addWidget(browse);
-  sl->addWidget(sensor);
   auto* transport = new QHBoxLayout;
   start_ = new QPushButton(tr("Start"));
   pause_ = new QPushButton(tr("Pause"));
@@ -233,7 +244,7 @@ void MainWindow::BuildControls() {
   layout->addStretch(1);
   auto* dock = new QDockWidget(tr("Controls"), this);
   dock->setObjectName("dock_controls");
-  dock->setWidget(w);
+  dock->setWidget(Scrolled(w));
   addDockWidget(Qt::LeftDockWidgetArea, dock);
   docks_["controls"] = dock;
   tabifyDockWidget(docks_["colour"], dock);
@@ -266,6 +277,77 @@ void MainWindow::BuildStatus() {
   addDockWidget(Qt::BottomDockWidgetArea, dock);
   docks_["status"] = dock;
 }
+
+void MainWindow::BuildSensorPanel() {
+  sensor_panel_ = new SensorPanel;
+  auto* dock = new QDockWidget(tr("Live camera"), this);
+  dock->setObjectName("dock_sensor");
+  dock->setWidget(Scrolled(sensor_panel_));
+  dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
+  addDockWidget(Qt::BottomDockWidgetArea, dock);
+  docks_["sensor"] = dock;
+  // Beside the status panel: the picture and the model stay in sight while the camera is set
+  // up, and the wide, short space suits the panel's three columns.
+  splitDockWidget(docks_["status"], dock, Qt::Horizontal);
+  connect(sensor_panel_, &SensorPanel::openCamera, this, [this](const QString& spec) {
+    source_->setCurrentText(spec);
+    ShowCameraPanel();
+    ResetScan();
+  });
+}
+
+void MainWindow::ConnectSensors() {
+  // Every camera request is a queued call on the scan thread (its command queue).
+  connect(sensor_panel_, &SensorPanel::refresh, worker_, &ScanWorker::ListSensors);
+  connect(sensor_panel_, &SensorPanel::controls, worker_, &ScanWorker::SetCameraControls);
+  connect(sensor_panel_, &SensorPanel::startRecording, worker_, &ScanWorker::StartRecording);
+  connect(sensor_panel_, &SensorPanel::stopRecording, worker_, &ScanWorker::StopRecording);
+  connect(worker_, &ScanWorker::sensorsListed, sensor_panel_, &SensorPanel::ShowSensors);
+  connect(worker_, &ScanWorker::recordingDone, this, [this](bool ok, const QString& msg) {
+    sensor_panel_->RecordingFinished(ok, msg);
+    statusBar()->showMessage(msg, 15000);
+  });
+  connect(worker_, &ScanWorker::cameraLost, this, [this](const QString& msg) {
+    camera_lost_ = true;
+    OnFailed(msg);
+    sensor_panel_->ShowNoCamera(msg);
+    start_->setText(tr("Resume"));
+  });
+  connect(worker_, &ScanWorker::cameraBack, this, [this](const QString& msg) {
+    camera_lost_ = false;
+    error_->hide();
+    error_->clear();
+    start_->setText(tr("Start"));
+    statusBar()->showMessage(msg, 15000);
+  });
+  try {
+    hotplug_ = std::make_unique<sensors::HotplugMonitor>([this](const std::string& uri, bool connected) {
+      const QString u = QString::fromStdString(uri);
+      QMetaObject::invokeMethod(this, [this, u, connected] { OnPlug(u, connected); }, Qt::QueuedConnection);
+    });
+    QMetaObject::invokeMethod(worker_, &ScanWorker::ListSensors, Qt::QueuedConnection);
+  } catch (const std::exception& e) {
+    sensor_panel_->ShowNoCamera(tr("Live cameras are unavailable: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void MainWindow::OnPlug(const QString& uri, bool connected) {
+  statusBar()->showMessage(connected ? tr("Camera connected: %1").arg(uri) : tr("Camera disconnected: %1").arg(uri), 10000);
+  if (connected)
+    QMetaObject::invokeMethod(worker_, "DeviceConnected", Qt::QueuedConnection, Q_ARG(QString, uri));
+  else
+    QMetaObject::invokeMethod(worker_, &ScanWorker::ListSensors, Qt::QueuedConnection);
+}
+
+void MainWindow::ShowCameraPanel() {
+  docks_["colour"]->raise();
+  docks_["sensor"]->show();
+  docks_["sensor"]->raise();
+
+}
+
+QString MainWindow::source_text() const { return source_->currentText(); }
+bool MainWindow::start_enabled() const { return start_->isEnabled(); }
 
 void MainWindow::BuildMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
@@ -359,14 +441,8 @@ void MainWindow::OnFailed(const QString& message) {
 QString MainWindow::health_text() const { return health_->text(); }
 QString MainWindow::error_text() const { return error_->isVisible() || !error_->text().isEmpty() ? error_->text() : QString(); }
 
-void MainWindow::Render() {
-  const auto s = latest_;
-  if (!s || s == shown_) return;
-  shown_ = s;
-  ++frames_shown_;
-  const auto& im = s->images;
-  const ToneSettings ts = tone_settings_;
-  // 2-D views (hidden docks are skipped: they cost nothing).
+// The camera's own images: the colour as delivered and the depth (also the live preview).
+void MainWindow::RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s) {
   auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
   if (visible("colour")) {
     views_["colour"]->SetImage(FromColor(s->color), [s](int x, int y) {
@@ -390,6 +466,31 @@ void MainWindow::Render() {
       return z > 0 ? QStringLiteral("depth %1 m").arg(z, 0, 'f', 3) : QStringLiteral("no depth");
     });
   }
+}
+
+void MainWindow::RenderPreview(const std::shared_ptr<const Snapshot>& s) {
+  RenderColourAndDepth(s);
+  const int in_model = s->report.index + 1;
+  frames_label_->setText(in_model > 0 ? tr("Live preview (not scanning); the model holds %1 frames").arg(in_model)
+                                      : tr("Live preview (not scanning)"));
+  if (!s->trajectory.empty()) view3d_->SetTrajectory(s->trajectory, s->camera);
+}
+
+void MainWindow::Render() {
+  const auto s = latest_;
+  if (!s || s == shown_) return;
+  shown_ = s;
+  ++frames_shown_;
+  if (s->live && !camera_lost_) sensor_panel_->ShowStatus(*s->live);
+  if (s->preview) {
+    RenderPreview(s);
+    return;
+  }
+  const auto& im = s->images;
+  const ToneSettings ts = tone_settings_;
+  // 2-D views (hidden docks are skipped: they cost nothing).
+  auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
+  RenderColourAndDepth(s);
   if (visible("radiance")) {
     views_["radiance"]->SetImage(tone_->Map(im.radiance, ts), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
                                  [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });

@@ -10,6 +10,7 @@
 
 #include "gui/scan_worker.h"
 #include "gui/tone_mapper.h"
+#include "sensors/openni_camera.h"
 
 class QComboBox;
 class QDoubleSpinBox;
@@ -23,6 +24,7 @@ class QDockWidget;
 namespace hdrf::gui {
 
 class SettingsForm;
+class SensorPanel;
 
 class ImageView;
 class VtkView;
@@ -47,6 +49,10 @@ class MainWindow : public QMainWindow {
   ImageView* view(const QString& name) const { return views_.value(name, nullptr); }
   VtkView* view3d() const { return view3d_; }
   QDockWidget* dock(const QString& name) const { return docks_.value(name, nullptr); }
+  SensorPanel* sensor_panel() const { return sensor_panel_; }
+  std::shared_ptr<const Snapshot> latest() const { return latest_; }
+  QString source_text() const;
+  bool start_enabled() const;
   int frames_shown() const { return frames_shown_; }
   QString health_text() const;
   QString error_text() const;
@@ -79,10 +85,16 @@ class MainWindow : public QMainWindow {
   void BuildControls();
   void BuildStatus();
   void BuildMenus();
+  void BuildSensorPanel();
+  void ConnectSensors();
+  void OnPlug(const QString& uri, bool connected);
+  void ShowCameraPanel();  // raises the camera panel and the colour view
   void LoadSettings();
   void SaveSettings() const;
   void OnSnapshot(std::shared_ptr<const Snapshot> s);
   void Render();  // the latest snapshot into every visible view (timer)
+  void RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s);
+  void RenderPreview(const std::shared_ptr<const Snapshot>& s);
   void OnFailed(const QString& message);
   void ApplyEngineSettings();
   void FinishScripted();
@@ -103,11 +115,14 @@ class MainWindow : public QMainWindow {
   QComboBox *source_ = nullptr, *tone_op_ = nullptr;
   QDoubleSpinBox* gamma_ = nullptr;
   SettingsForm* engine_ = nullptr;  // generated from the settings registry
+  SensorPanel* sensor_panel_ = nullptr;
+  std::unique_ptr<sensors::HotplugMonitor> hotplug_;  // events come on OpenNI2's threads
   QSlider* exposure_ = nullptr;
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
   QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
   int frames_shown_ = 0;
   bool scripted_done_ = false;
+  bool camera_lost_ = false;  // the live camera is away: late snapshots do not redraw its panel
   QByteArray default_state_;
 };
 

@@ -3,6 +3,12 @@
 // pointer): views take the latest and drop what they had no time for, so a slow view never
 // stalls the scan. Errors from the source or the engine pause the scan with a message; the
 // model built so far is kept.
+//
+// Every command reaches the worker as a queued call on its thread (the thread's event queue
+// is the command queue): they run between two frames, never during one. With a live camera
+// (an "openni:..." source) the worker also previews while it is not scanning, applies the
+// camera's exposure controls, records, and survives an unplug: the scan pauses with its model,
+// and resumes when the same camera (same serial) comes back.
 #pragma once
 
 #include <QObject>
@@ -14,6 +20,8 @@
 #include "mesh/mesh.h"
 #include "pipeline/frame_source.h"
 #include "pipeline/scan_session.h"
+#include "sensors/live_source.h"
+#include "sensors/recorder.h"
 
 namespace hdrf::gui {
 
@@ -26,8 +34,31 @@ struct ScanSettings {
   int mesh_min_interval_ms = 500;
 };
 
+// A live camera's state, as the sensor panel shows it.
+struct LiveStatus {
+  sensors::DeviceEntry device;
+  sensors::ExposureState exposure;
+  bool has_camera_settings = false;
+  std::optional<double> ms_per_unit;  // the profile's exposure unit (none: raw units only)
+  bool own_profile = false;
+  long dropped = 0;                   // frames the camera numbered that never arrived
+  double fps = 0;                     // frames read per second (recent)
+  bool recording = false;
+  std::string recording_path;
+  sensors::RecordingStats recording_stats;
+};
+
+// A device as the sensor list shows it.
+struct SensorListing {
+  sensors::DeviceEntry entry;
+  bool own_profile = false;  // a calibration for this serial is stored
+  bool in_use = false;       // the studio has it open
+};
+
 // What one processed frame leaves for the views (all host copies, never modified).
 struct Snapshot {
+  bool preview = false;              // a live frame shown, not scanned (colour and depth only)
+  std::optional<LiveStatus> live;
   pipeline::FrameReport report;
   ColorImage color;
   pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast
@@ -60,6 +91,16 @@ class ScanWorker : public QObject {
   void ExportMesh(const QString& path);
   void ExportTrajectory(const QString& path);
   void ExportRender(const QString& path);
+  // Live camera: exposure controls (the ae/awb/exposure/gain parts; unset ones stay).
+  void SetCameraControls(const hdrf::sensors::LiveOptions& controls);
+  // Records what the camera delivers from now on (scanning or not): a sequence folder
+  // (absent or empty), or FILE.oni.
+  void StartRecording(const QString& path);
+  void StopRecording();
+  // Lists the connected devices (answers with sensorsListed).
+  void ListSensors();
+  // Hot-plug events (from the window's monitor): a lost camera that comes back is reopened.
+  void DeviceConnected(const QString& uri);
 
  signals:
   void snapshot(std::shared_ptr<const hdrf::gui::Snapshot> s);
@@ -68,12 +109,34 @@ class ScanWorker : public QObject {
   void finished(int frames);            // the source is exhausted
   void exportProgress(double fraction);
   void exportDone(bool ok, const QString& message);
+  void sensorsListed(const std::vector<hdrf::gui::SensorListing>& sensors);
+  void recordingDone(bool ok, const QString& message);
+  void cameraLost(const QString& message);  // the scan is paused, the model kept
+  void cameraBack(const QString& message);
 
  private:
+  void Kick();     // schedules Loop once
+  void Loop();     // one frame: scanned while running, else previewed (live cameras)
   void Step();
+  void Preview();
   void Open();
+  void OpenSource();
+  void Lost(const std::string& why);
+  void TryReconnect(int attempt);
+  void Record(const sensors::LiveFrame& f);
+  void FinishRecording(const QString& why);
+  LiveStatus Status();
   ScanSettings settings_;
   std::unique_ptr<pipeline::FrameSource> source_;
+  sensors::LiveFrameSource* live_ = nullptr;  // source_, when it is a live camera
+  std::string source_spec_;                   // what source_ was opened from
+  sensors::LiveOptions controls_;             // exposure controls in force (reapplied after a replug)
+  bool lost_ = false, resume_ = false, loop_scheduled_ = false, reconnecting_ = false;
+  std::string lost_serial_;
+  std::unique_ptr<sensors::SequenceRecorder> recorder_;
+  std::unique_ptr<sensors::OniRecording> oni_;
+  QString recording_path_;
+  double fps_ = 0, last_frame_time_ = -1;
   std::unique_ptr<pipeline::ScanSession> session_;
   std::shared_ptr<const mesh::Mesh> mesh_;
   std::int64_t mesh_time_ms_ = 0;
@@ -81,11 +144,13 @@ class ScanWorker : public QObject {
   std::atomic<bool> cancel_export_{false};
 };
 
-// Opens a source spec: "synthetic:key=value,..." (as `hdrfusion scan`), or a sequence
-// folder. Throws hdrf::Error / InputError with the reason.
+// Opens a source spec: "synthetic:key=value,..." (as `hdrfusion scan`), a sequence folder,
+// a live camera "openni:..." or a recording FILE.oni. Throws hdrf::Error with the reason.
 std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec);
 
 }  // namespace hdrf::gui
 
 Q_DECLARE_METATYPE(hdrf::gui::ScanSettings)
 Q_DECLARE_METATYPE(std::shared_ptr<const hdrf::gui::Snapshot>)
+Q_DECLARE_METATYPE(hdrf::sensors::LiveOptions)
+Q_DECLARE_METATYPE(std::vector<hdrf::gui::SensorListing>)

@@ -49,13 +49,18 @@ CaptureMode ParseCaptureMode(const std::string& name) {
   throw SettingError("mode", "unknown capture mode '" + name + "'; choose vga (640x480) or qvga (320x240)");
 }
 
-std::vector<DeviceEntry> ListDevices() {
+std::vector<DeviceEntry> ListDevices(const std::vector<DeviceEntry>& known) {
   EnsureOpenNi();
   openni::Array<openni::DeviceInfo> infos;
   openni::OpenNI::enumerateDevices(&infos);
   std::vector<DeviceEntry> out;
   for (int i = 0; i < infos.getSize(); ++i) {
     DeviceEntry e{infos[i].getName(), infos[i].getVendor(), infos[i].getUri(), ""};
+    const auto open = std::find_if(known.begin(), known.end(), [&](const DeviceEntry& k) { return k.uri == e.uri; });
+    if (open != known.end()) {
+      out.push_back(*open);
+      continue;
+    }
     openni::Device d;
     if (d.open(e.uri.c_str()) == openni::STATUS_OK) {
       e.serial = Serial(d);

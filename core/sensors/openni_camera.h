@@ -64,8 +64,9 @@ struct LiveFrame {
 void EnsureOpenNi();
 
 // Devices connected now. Opens each briefly to read its serial (a device in use by another
-// program is listed with an empty serial).
-std::vector<DeviceEntry> ListDevices();
+// program is listed with an empty serial); a device in `known` (one this process has open)
+// is taken from there, not opened again.
+std::vector<DeviceEntry> ListDevices(const std::vector<DeviceEntry>& known = {});
 
 // Connect and disconnect events, delivered on OpenNI's threads (forward them; do not block).
 class HotplugMonitor {

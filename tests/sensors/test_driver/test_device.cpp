@@ -12,7 +12,11 @@
 //   gain (100 = unity), video mode, cropping (off only), mirroring, fields of view
 //   hot plug: the file named by $HDRF_TEST_DEVICE_CONTROL, polled every 10 ms; "unplugged"
 //   disconnects the device (frames stop, OpenNI reports the disconnect), "plugged"
-//   connects it again
+//   connects it again; a device closed while unplugged goes on along its path where it
+//   stopped when it is opened again (the operator held the camera still), so a scan that
+//   resumes after a replug can keep tracking
+// $HDRF_TEST_DEVICE_FRAMES_PER_VIEW (default 1) slows the camera down: each view is held for
+// that many frames (a scan slower than 30 Hz then still sees small steps).
 // The camera moves back and forth along 48 views of the room's handheld path (rendered
 // once per resolution, then only exposed per frame, so VGA keeps 30 Hz on two cores).
 #define XN_NEW(type, arg) new type(arg)
@@ -43,6 +47,13 @@ using namespace std::chrono_literals;
 constexpr int kViews = 48;
 constexpr double kUnitMs = 0.1;  // raw exposure unit
 constexpr const char* kUri = "hdrf-test://0";
+
+std::string Env(const char* name, const char* fallback);
+
+int FramesPerView() {
+  static const int n = std::max(1, std::atoi(Env("HDRF_TEST_DEVICE_FRAMES_PER_VIEW", "1").c_str()));
+  return n;
+}
 
 std::string Env(const char* name, const char* fallback) {
   const char* v = std::getenv(name);
@@ -225,7 +236,7 @@ class TestStream : public oni::driver::StreamBase {
     }
     const int w = mode.resolutionX, h = mode.resolutionY;
     const int cycle = 2 * kViews - 2;
-    const int phase = index % cycle;
+    const int phase = (index / FramesPerView()) % cycle;
     const int view_index = phase < kViews ? phase : cycle - phase;
     const View& view = Views().Get(w, h, view_index);
     OniFrame* frame = getServices().acquireFrame();
@@ -300,13 +311,17 @@ class TestStream : public oni::driver::StreamBase {
 
 class TestDevice : public oni::driver::DeviceBase {
  public:
-  TestDevice(std::string serial, std::atomic<bool>* plugged) : serial_(std::move(serial)), plugged_(plugged) {
+  TestDevice(std::string serial, std::atomic<bool>* plugged, std::atomic<int>* resume)
+      : serial_(std::move(serial)), plugged_(plugged), resume_(resume) {
     color_modes_ = {Mode(ONI_PIXEL_FORMAT_RGB888, 640, 480), Mode(ONI_PIXEL_FORMAT_RGB888, 320, 240)};
     depth_modes_ = {Mode(ONI_PIXEL_FORMAT_DEPTH_1_MM, 640, 480), Mode(ONI_PIXEL_FORMAT_DEPTH_1_MM, 320, 240)};
     sensors_[0] = {ONI_SENSOR_COLOR, int(color_modes_.size()), color_modes_.data()};
     sensors_[1] = {ONI_SENSOR_DEPTH, int(depth_modes_.size()), depth_modes_.data()};
   }
-  ~TestDevice() override { StopThread(); }
+  ~TestDevice() override {
+    StopThread();
+    if (!plugged_->load() && delivered_ >= 0) resume_->store(delivered_ + 1);
+  }
 
   OniStatus getSensorInfoList(OniSensorInfo** infos, int* count) override {
     *infos = sensors_;
@@ -390,8 +405,9 @@ class TestDevice : public oni::driver::DeviceBase {
     for (auto [w, h] : sizes)
       for (int i = 0; i < kViews && running_; ++i) Views().Get(w, h, i);
     const auto t0 = std::chrono::steady_clock::now();
-    for (int index = 0; running_; ++index) {
-      std::this_thread::sleep_until(t0 + std::chrono::microseconds(std::int64_t(index) * 33333));
+    const int first = resume_->exchange(0);
+    for (int index = first; running_; ++index) {
+      std::this_thread::sleep_until(t0 + std::chrono::microseconds(std::int64_t(index - first) * 33333));
       if (!plugged_->load()) continue;  // unplugged: no frames
       std::vector<TestStream*> live;
       {
@@ -403,11 +419,14 @@ class TestDevice : public oni::driver::DeviceBase {
       // Colour first: auto exposure meters it; depth follows with the same timestamp.
       std::sort(live.begin(), live.end(), [](TestStream* a, TestStream* b) { return a->type() < b->type(); });
       for (TestStream* s : live) s->Deliver(index, ts, seed, ae, metered);
+      delivered_ = index;
     }
   }
 
   std::string serial_;
   std::atomic<bool>* plugged_;
+  std::atomic<int>* resume_;      // where the next device starts along the path
+  std::atomic<int> delivered_{-1};
   std::vector<OniVideoMode> color_modes_, depth_modes_;
   OniSensorInfo sensors_[2];
   std::mutex mutex_;
@@ -453,7 +472,7 @@ class TestDriver : public oni::driver::DriverBase {
   }
   oni::driver::DeviceBase* deviceOpen(const char* uri, const char* /*mode*/) override {
     if (std::strcmp(uri, kUri) != 0 || !plugged_) return nullptr;
-    return new TestDevice(serial_, &plugged_);
+    return new TestDevice(serial_, &plugged_, &resume_);
   }
   void deviceClose(oni::driver::DeviceBase* device) override { delete device; }
   OniStatus tryDevice(const char* uri) override {
@@ -491,6 +510,7 @@ class TestDriver : public oni::driver::DriverBase {
   OniDeviceInfo info_;
   std::string serial_, control_;
   std::atomic<bool> plugged_{true};
+  std::atomic<int> resume_{0};
   std::atomic<bool> watching_{false};
   std::thread watcher_;
 };
