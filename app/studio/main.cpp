@@ -24,7 +24,10 @@ int main(int argc, char** argv) {
   QCommandLineParser p;
   p.setApplicationDescription("HDRFusion Studio: HDR RGB-D scanning");
   p.addHelpOption();
-  QCommandLineOption source("source", "Sequence folder or synthetic:key=value,... (default: the synthetic room)", "SPEC");
+  QCommandLineOption source("source",
+                            "Sequence folder, FILE.oni, openni:device=SERIAL,mode=vga|qvga (a live camera), or "
+                            "synthetic:key=value,... (default: the synthetic room)",
+                            "SPEC");
   QCommandLineOption frames("frames", "Stop after N frames", "N");
   QCommandLineOption device("device", "cpu or cuda", "DEVICE");
   QCommandLineOption shot("screenshot", "Run, save the window to FILE (and FILE.json), and quit", "FILE");

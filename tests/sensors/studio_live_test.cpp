@@ -17,6 +17,7 @@
 #include <QSpinBox>
 #include <QTemporaryDir>
 #include <QTest>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -129,6 +130,7 @@ TEST(StudioLive, ListsOnPlugEventsPreviewsControlsAndRecords) {
       QRegularExpression("Recorded (\\d+) frames \\(([0-9.]+) MB, ([0-9.]+) s, (\\d+) dropped\\)").match(panel->recording_text());
   ASSERT_TRUE(m.hasMatch()) << panel->recording_text().toStdString();
   const int written = m.captured(1).toInt();
+  std::printf("studio recording: %s; preview %.1f frames/s\n", qPrintable(panel->recording_text()), w.latest()->live->fps);
   EXPECT_GE(written, 40);
   EXPECT_EQ(m.captured(4).toInt(), 0);
   EXPECT_GT(m.captured(2).toDouble(), 0.1);
@@ -178,6 +180,8 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
   for (std::size_t i = 1; i < s.trajectory.size(); ++i)
     largest = std::max(largest, (s.trajectory[i - 1].inverse() * s.trajectory[i]).translation().norm());
   const double gap = (s.trajectory[at_unplug - 1].inverse() * s.trajectory[at_unplug]).translation().norm();
+  std::printf("studio unplug at %d frames, resumed to %d; step across the gap %.1f mm, largest step %.1f mm\n",
+              at_unplug, Scanned(w), 1000 * gap, 1000 * largest);
   EXPECT_LT(gap, 0.05);
   EXPECT_LT(largest, 0.05);
   // The model grew on: the device held still while it was away, so tracking continues.
