@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <unistd.h>
 
 #include "cli/commands.h"
 #include "cli/plot.h"
@@ -15,6 +17,7 @@
 #include "io/sweep.h"
 #include "radiometry/calibration.h"
 #include "radiometry/pcf.h"
+#include "radiometry/validation.h"
 
 namespace hdrf::cli {
 
@@ -84,6 +87,14 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::Range(0, 10))->capture_default_str();
   cmd->add_option("--plots", a->plots, "Folder for response.png, derivative.png, pcf.png");
   return {cmd, [a] {
+    // The output is checked before the sweep is read and fitted: a typo in --out must not
+    // cost the whole fit.
+    const fs::path out = a->out;
+    const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    if (!fs::is_directory(folder))
+      throw InputError(out, "its folder " + folder.string() + " does not exist (create it first)");
+    if (fs::is_directory(out)) throw InputError(out, "is a folder; give the sensor.json file to write");
+    if (access(folder.c_str(), W_OK) != 0) throw InputError(out, "its folder " + folder.string() + " is not writable");
     const Sweep sweep = io::ReadSweep(a->sweep);
     SensorInfo sensor = io::ReadSensorJson(fs::path(a->sweep) / "sensor.json");
     std::map<double, int> per_exposure;
@@ -91,23 +102,30 @@ Command AddCalibrateCommand(CLI::App& app) {
     std::printf("sweep %s: %zu frames, %zu exposures from %.4g to %.4g ms\n", a->sweep.c_str(),
                 sweep.images.size(), per_exposure.size(), per_exposure.begin()->first,
                 per_exposure.rbegin()->first);
-    ResponseFit fit;
-    if (a->method == "debevec") {
-      DebevecOptions o;
-      o.threshold_passes = a->threshold_passes;
-      fit = FitDebevec(sweep, o);
-    } else if (a->method == "robertson") {
-      RobertsonOptions o;
-      o.threshold_passes = a->threshold_passes;
-      fit = FitRobertson(sweep, o);
-    } else {
+    CheckSweepForCalibration(sweep);  // before the fit: too few exposures, reversed, moved, clipped
+    std::optional<EmorBasis> basis;
+    if (a->method == "emor") {
       if (a->basis.empty())
         throw SettingError("--emor-basis", "--method emor needs the EMoR basis file invemor.txt");
+      basis = EmorBasis::Load(a->basis);
+    }
+    auto fit_sweep = [&](const Sweep& s) {
+      if (a->method == "debevec") {
+        DebevecOptions o;
+        o.threshold_passes = a->threshold_passes;
+        return FitDebevec(s, o);
+      }
+      if (a->method == "robertson") {
+        RobertsonOptions o;
+        o.threshold_passes = a->threshold_passes;
+        return FitRobertson(s, o);
+      }
       EmorOptions o;
       o.components = a->emor_components;
       o.threshold_passes = a->threshold_passes;
-      fit = FitEmor(sweep, EmorBasis::Load(a->basis), o);
-    }
+      return FitEmor(s, *basis, o);
+    };
+    const ResponseFit fit = fit_sweep(sweep);
     std::printf("\nresponse (%s%s), scaled so that f^-1(128) = 1 per channel\n", fit.method.c_str(),
                 a->threshold_passes > 0 ? ", refined on the level thresholds" : ", classic");
     const char* ch = "RGB";
@@ -126,17 +144,13 @@ Command AddCalibrateCommand(CLI::App& app) {
                     "(%.1f %% apart); --method debevec follows it more closely\n", a->emor_components,
                     100 * gap);
     }
-    double max_step = 0;
-    for (auto it = std::next(per_exposure.begin()); it != per_exposure.end(); ++it)
-      max_step = std::max(max_step, std::log2(it->first / std::prev(it)->first));
-    if (max_step > 1.01)
-      std::printf("  note: exposures are up to %.1f stops apart; half-stop steps recover the "
-                  "curve near saturation more accurately\n", max_step);
     sensor.response = fit.inverse;
     NoiseModel noise;
     bool have_noise = false;
+    std::optional<std::array<double, 3>> misfit;
     try {
       const NoiseFit nf = FitNoise(sweep, fit.inverse);
+      misfit = nf.rms_relative_residual;
       noise = nf.noise;
       have_noise = true;
       std::printf("\nnoise level function (Var R = R sigma_s^2 + sigma_c^2)\n");
@@ -151,11 +165,29 @@ Command AddCalibrateCommand(CLI::App& app) {
       noise.sigma_s = {0.02f, 0.02f, 0.02f};  // for the merge check only
       noise.sigma_c = {0.002f, 0.002f, 0.002f};
     }
-    const RadianceImage merged = MergeHdr(sweep, fit.inverse, noise);
-    std::printf("\nconsistency of the merged radiance, per exposure (levels 32-224)\n");
-    for (const auto& e : MergeConsistency(sweep, fit.inverse, merged))
+    std::printf("\nchecking the fit (each exposure against the merge; the middle one held back and predicted)\n");
+    const CalibrationCheck check =
+        CheckCalibration(sweep, fit.inverse, noise, misfit, [&](const Sweep& s) { return fit_sweep(s).inverse; });
+    for (const auto& e : check.consistency)
       std::printf("  %9.4g ms: median |deviation| %.3f stops over %ld samples\n", e.exposure_ms,
                   e.median_abs_stops, e.samples);
+    std::printf("  held back %.4g ms: predicted within %.3f stops (median over %ld samples)\n",
+                check.held_out.exposure_ms, check.held_out.median_abs_stops, check.held_out.samples);
+    std::printf("  levels covered by the scene: R %.0f %%, G %.0f %%, B %.0f %% (of levels 8-247)\n",
+                100 * check.coverage.share[0], 100 * check.coverage.share[1], 100 * check.coverage.share[2]);
+    std::printf("verdict: %s\n", VerdictName(check.verdict));
+    for (const std::string& r : check.reasons) std::printf("  - %s\n", r.c_str());
+    if (check.verdict == Verdict::kRedo) {
+      std::string why;
+      for (const std::string& r : check.reasons) why += "\n  - " + r;
+      throw Error(a->sweep + ": the calibration is not good enough to use, nothing was written (verdict: redo):" + why +
+                  "\nRedo the sweep: static camera and scene, auto exposure off, 5 or more exposures a stop or "
+                  "less apart from mostly dark to mostly saturated");
+    }
+    if (!check.noise_usable && have_noise) {
+      sensor.noise.reset();
+      have_noise = false;
+    }
     io::WriteSensorJson(a->out, sensor);
     std::printf("\nwrote %s (response%s)\n", a->out.c_str(), have_noise ? " and noise" : " only");
     if (!a->plots.empty()) {

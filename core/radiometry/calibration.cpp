@@ -98,6 +98,30 @@ void CheckSweep(const Sweep& s) {
     if (im.width() != s.images[0].width() || im.height() != s.images[0].height())
       throw Error(s.source + ": frames of different sizes");
   const ClipLevels clip;
+  // Brightness must grow with exposure (the response is monotonic): a frame darker than a
+  // shorter exposure means exposure.txt does not match the images (listed in reverse, or
+  // shifted against rgb.txt). Judged on the mean green level of each exposure's frames (all
+  // pixels: clipping only flattens the growth), with 2 levels of slack for noise.
+  {
+    std::vector<double> mean(g.exposure.size(), 0.0);
+    const std::size_t n = s.images[0].size();
+    for (std::size_t k = 0; k < g.exposure.size(); ++k) {
+      double sum = 0;
+      for (int i : g.images[k])
+        for (std::size_t p = 0; p < n; p += 5) sum += s.images[std::size_t(i)][p].g;
+      mean[k] = sum / (double(g.images[k].size()) * double((n + 4) / 5));
+    }
+    for (std::size_t k = 0; k + 1 < mean.size(); ++k)
+      if (mean[k + 1] < mean[k] - 2.0) {
+        std::ostringstream os;
+        os.precision(4);
+        os << s.source << ": frames get darker as the listed exposure grows (mean level " << mean[k] << " at "
+           << g.exposure[k] << " ms, " << mean[k + 1] << " at " << g.exposure[k + 1]
+           << " ms): the exposures in exposure.txt do not match the images (listed in reverse order, or shifted "
+              "against rgb.txt?)";
+        throw Error(os.str());
+      }
+  }
   // Usable pixels: unclipped in at least two exposures (any channel).
   std::size_t usable = 0;
   const std::size_t n = s.images[0].size();

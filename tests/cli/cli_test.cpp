@@ -1,6 +1,7 @@
 // Runs the real `hdrfusion` binary as a user would and checks exit status and output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/exr.h"
+#include "io/image_io.h"
 #include "io/sensor_json.h"
 #include "io/sequence.h"
 #include "support/test_support.h"
@@ -169,6 +171,9 @@ TEST(Cli, CalibrateAndMergeASimulatedSweep) {
   EXPECT_NE(r.output.find("noise level function"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("median |deviation|"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("refined on the level thresholds"), std::string::npos) << r.output;
+  // The check of the fit: the middle exposure held back and predicted, a verdict.
+  EXPECT_NE(r.output.find("held back"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("verdict: good"), std::string::npos) << r.output;
   const SensorInfo s = io::ReadSensorJson(dir / "s.json");
   ASSERT_TRUE(s.response && s.noise);
   EXPECT_FLOAT_EQ(s.response->table[1][128], 1.f);
@@ -190,6 +195,90 @@ TEST(Cli, CalibrateAndMergeASimulatedSweep) {
   r = RunCli("calibrate " + sweep + " --out " + (dir / "e.json").string() + " --method emor");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--emor-basis"), std::string::npos) << r.output;
+}
+
+// Rewrites a sweep's exposure.txt with the exposures in reverse order (the images stay).
+void ReverseExposures(const fs::path& sweep) {
+  std::ifstream in(sweep / "exposure.txt");
+  std::vector<std::string> head, stamp, exposure;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') {
+      head.push_back(line);
+      continue;
+    }
+    const auto sp = line.find(' ');
+    stamp.push_back(line.substr(0, sp));
+    exposure.push_back(line.substr(sp + 1));
+  }
+  std::ofstream out(sweep / "exposure.txt");
+  for (const auto& h : head) out << h << "\n";
+  for (std::size_t i = 0; i < stamp.size(); ++i) out << stamp[i] << " " << exposure[exposure.size() - 1 - i] << "\n";
+}
+
+// The bad sweeps a new user makes end in a clear message, before the fit where they can,
+// and nothing is written.
+TEST(Cli, CalibrateRefusesBadSweepsBeforeWritingAnything) {
+  test::TempDir dir;
+  const fs::path out = dir / "s.json";
+  // Two frames, 1 and 2 ms: the curve would be off by more than half the range at the top.
+  const std::string two = (dir / "two").string();
+  ASSERT_EQ(RunCli("simulate --out " + two + " --sweep --sweep-exposures 1,2 --sweep-repeats 1 --size 96x72").status, 0);
+  RunResult r = RunCli("calibrate " + two + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("2 distinct exposures"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at least 3"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("response ("), std::string::npos) << "refused after fitting:\n" << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // Exposures listed in reverse: said so (not blamed on the output file), before the fit.
+  const fs::path rev = dir / "rev";
+  ASSERT_EQ(RunCli("simulate --out " + rev.string() + " --sweep --sweep-exposures 1,2,4,8,16,32 --sweep-repeats 3 "
+                   "--size 96x72").status, 0);
+  ReverseExposures(rev);
+  r = RunCli("calibrate " + rev.string() + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("darker as the listed exposure grows"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("reverse"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(out.string()), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // All white: every frame saturated.
+  const std::string white = (dir / "white").string();
+  ASSERT_EQ(RunCli("simulate --out " + white + " --sweep --sweep-exposures 2000,2800,4000,5600 --sweep-repeats 3 "
+                   "--size 96x72").status, 0);
+  r = RunCli("calibrate " + white + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("clipped"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A flat scene (a white wall): one brightness per exposure, most levels never seen.
+  const fs::path flat = dir / "flat";
+  fs::create_directories(flat / "rgb");
+  std::ofstream rgb(flat / "rgb.txt"), exposure(flat / "exposure.txt");
+  int frame = 0;
+  for (double ms : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0})
+    for (int k = 0; k < 3; ++k, ++frame) {
+      ColorImage im(96, 72);
+      const int level = std::min(255, int(6 * ms)) ;
+      for (std::size_t p = 0; p < im.size(); ++p) {
+        const int v = std::clamp(level + int(p * 2654435761u % 5) - 2, 0, 255);
+        im[p] = Rgb8{std::uint8_t(v), std::uint8_t(v), std::uint8_t(v)};
+      }
+      const std::string name = "rgb/" + std::to_string(frame) + ".png";
+      io::WriteColorPng(flat / name, im);
+      rgb << frame << " " << name << "\n";
+      exposure << frame << " " << ms << "\n";
+    }
+  rgb.close();
+  exposure.close();
+  fs::copy_file(rev / "sensor.json", flat / "sensor.json");
+  r = RunCli("calibrate " + flat.string() + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("too few distinct brightnesses"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A missing output folder: found before the sweep is even read.
+  r = RunCli("calibrate " + rev.string() + " --out " + (dir / "no" / "such" / "s.json").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("sweep "), std::string::npos) << "the sweep was read first:\n" << r.output;
 }
 
 TEST(Cli, CalibrateRefusesASweepWithoutExposures) {

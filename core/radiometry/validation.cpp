@@ -1,0 +1,201 @@
+#include "radiometry/validation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace hdrf::radiometry {
+
+namespace {
+
+std::vector<double> DistinctExposures(const Sweep& s) {
+  std::vector<double> e = s.exposure_ms;
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
+}
+
+std::string Ms(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v << " ms";
+  return os.str();
+}
+
+std::string Stops(double v) {
+  std::ostringstream os;
+  os.precision(2);
+  os << std::fixed << v << " stops";
+  return os.str();
+}
+
+}  // namespace
+
+LevelCoverage MeasureLevelCoverage(const Sweep& s, ClipLevels clip) {
+  LevelCoverage out;
+  const std::vector<double> e = DistinctExposures(s);
+  std::vector<const ColorImage*> first;
+  for (double x : e)
+    for (std::size_t i = 0; i < s.images.size(); ++i)
+      if (s.exposure_ms[i] == x) {
+        first.push_back(&s.images[i]);
+        break;
+      }
+  constexpr int kLo = 8, kHi = 247, kMin = 4;
+  const std::size_t n = s.images.empty() ? 0 : s.images[0].size();
+  for (int c = 0; c < 3; ++c) {
+    std::array<int, 256> count{};
+    for (std::size_t p = 0; p < n; p += 3) {
+      int unclipped = 0;
+      for (const ColorImage* im : first) {
+        const int z = c == 0 ? (*im)[p].r : c == 1 ? (*im)[p].g : (*im)[p].b;
+        unclipped += z >= clip.lo && z <= clip.hi;
+      }
+      if (unclipped < 2) continue;
+      for (const ColorImage* im : first) ++count[std::size_t(c == 0 ? (*im)[p].r : c == 1 ? (*im)[p].g : (*im)[p].b)];
+    }
+    int covered = 0, run = 0, best = 0;
+    out.gap_from[c] = 1, out.gap_to[c] = 0;
+    for (int z = kLo; z <= kHi; ++z) {
+      if (count[std::size_t(z)] >= kMin) {
+        ++covered;
+        run = 0;
+      } else if (++run > best) {
+        best = run;
+        out.gap_from[c] = z - run + 1;
+        out.gap_to[c] = z;
+      }
+    }
+    out.share[c] = double(covered) / double(kHi - kLo + 1);
+  }
+  return out;
+}
+
+void CheckSweepForCalibration(const Sweep& s) {
+  CheckSweep(s);
+  const std::vector<double> e = DistinctExposures(s);
+  if (e.size() < 3) {
+    std::ostringstream os;
+    os << s.source << ": " << e.size() << " distinct exposures (" << Ms(e.front()) << " and " << Ms(e.back())
+       << ") cannot calibrate a camera: the response is only pinned down where exposures overlap, and with two "
+          "nothing is left to check the fit against. Capture at least 3 (5 or more, a stop or half a stop apart, "
+          "from mostly dark to mostly saturated)";
+    throw Error(os.str());
+  }
+  const LevelCoverage cov = MeasureLevelCoverage(s);
+  for (int c = 0; c < 3; ++c)
+    if (cov.share[c] < 0.5) {
+      std::ostringstream os;
+      os << s.source << ": the scene shows too few distinct brightnesses to calibrate: only " << int(100 * cov.share[c])
+         << " % of the levels of the " << "RGB"[c] << " channel are seen in pixels that another exposure also shows "
+         << "(levels " << cov.gap_from[c] << " to " << cov.gap_to[c] << " not at all). Point the camera at a "
+         << "scene with dark, middle and bright parts (not a white wall or a single card)";
+      throw Error(os.str());
+    }
+}
+
+const char* VerdictName(Verdict v) {
+  switch (v) {
+    case Verdict::kGood: return "good";
+    case Verdict::kMarginal: return "marginal";
+    default: return "redo";
+  }
+}
+
+CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inverse, const NoiseModel& noise,
+                                  const std::optional<std::array<double, 3>>& noise_misfit,
+                                  const std::function<InverseResponse(const Sweep&)>& refit,
+                                  const CheckLimits& lim) {
+  CalibrationCheck out;
+  auto grade = [&](Verdict v, const std::string& why) {
+    out.verdict = std::max(out.verdict, v);
+    out.reasons.push_back(why);
+  };
+  // Every exposure against the merge of all.
+  const RadianceImage merged = MergeHdr(sweep, inverse, noise);
+  out.consistency = MergeConsistency(sweep, inverse, merged);
+  {
+    int over_good = 0, over_redo = 0, judged = 0;
+    const ExposureConsistency* worst = nullptr;
+    for (const ExposureConsistency& c : out.consistency) {
+      if (c.samples < 100) continue;
+      ++judged;
+      over_good += c.median_abs_stops > lim.good_stops;
+      over_redo += c.median_abs_stops > lim.redo_stops;
+      if (!worst || c.median_abs_stops > worst->median_abs_stops) worst = &c;
+    }
+    if (worst && worst->median_abs_stops > lim.good_stops) {
+      std::ostringstream os;
+      os << (over_redo ? over_redo : over_good) << " of " << judged << " exposures disagree with the merge by more than "
+         << Stops(over_redo ? lim.redo_stops : lim.good_stops) << " (worst " << Stops(worst->median_abs_stops) << " at "
+         << Ms(worst->exposure_ms) << ")"
+         << (over_redo ? ": the exposure times do not match the images, or the scene changed"
+                       : "; good is below " + Stops(lim.good_stops));
+      grade(over_redo ? Verdict::kRedo : Verdict::kMarginal, os.str());
+    }
+  }
+  // The middle exposure held back: fitted without it, predicted from the others.
+  const std::vector<double> e = DistinctExposures(sweep);
+  const double held = e[e.size() / 2];
+  Sweep others, held_back;
+  others.source = held_back.source = sweep.source;
+  for (std::size_t i = 0; i < sweep.images.size(); ++i) {
+    Sweep& to = sweep.exposure_ms[i] == held ? held_back : others;
+    to.images.push_back(sweep.images[i].Clone());
+    to.exposure_ms.push_back(sweep.exposure_ms[i]);
+  }
+  try {
+    const InverseResponse without = refit(others);
+    const RadianceImage merged_others = MergeHdr(others, without, noise);
+    const auto c = MergeConsistency(held_back, without, merged_others);
+    if (!c.empty()) out.held_out = c.front();
+    out.held_out.exposure_ms = held;
+    if (out.held_out.samples < 100)
+      grade(Verdict::kMarginal, "too few well-exposed pixels at " + Ms(held) + " to check the fit on a held-back exposure");
+    else if (out.held_out.median_abs_stops > lim.redo_stops)
+      grade(Verdict::kRedo, "the " + Ms(held) + " exposure, held back, is predicted from the others only within " +
+                                Stops(out.held_out.median_abs_stops) + " (limit " + Stops(lim.redo_stops) +
+                                "): the response does not hold between exposures");
+    else if (out.held_out.median_abs_stops > lim.good_stops)
+      grade(Verdict::kMarginal, "the " + Ms(held) + " exposure, held back, is predicted within " +
+                                    Stops(out.held_out.median_abs_stops) + " (good below " + Stops(lim.good_stops) + ")");
+  } catch (const Error& err) {
+    out.held_out.exposure_ms = held;
+    grade(Verdict::kRedo, std::string("the fit without the ") + Ms(held) + " exposure failed: " + err.what());
+  }
+  // Levels the scene leaves uncovered: the curve is interpolated there.
+  out.coverage = MeasureLevelCoverage(sweep);
+  for (int c = 0; c < 3; ++c)
+    if (out.coverage.share[c] < 0.9) {
+      std::ostringstream os;
+      os << int(100 * out.coverage.share[c]) << " % of the " << "RGB"[c]
+         << " levels are covered (levels " << out.coverage.gap_from[c] << " to " << out.coverage.gap_to[c]
+         << " not seen): the curve is interpolated there; a scene with more distinct brightnesses covers them";
+      grade(Verdict::kMarginal, os.str());
+    }
+  // Steps between exposures.
+  double step = 0;
+  for (std::size_t k = 1; k < e.size(); ++k) step = std::max(step, std::log2(e[k] / e[k - 1]));
+  if (step > lim.max_step_stops)
+    grade(Verdict::kMarginal, "exposures up to " + Stops(step) +
+                                  " apart; steps of a stop or less pin the curve down near saturation");
+  // The noise fit.
+  if (noise_misfit) {
+    const double worst = std::max({(*noise_misfit)[0], (*noise_misfit)[1], (*noise_misfit)[2]});
+    if (!(worst <= lim.noise_misfit)) {
+      out.noise_usable = false;
+      std::ostringstream os;
+      os.precision(3);
+      os << "the noise level function does not fit the measured noise (rms relative misfit " << worst << ", limit "
+         << lim.noise_misfit << "): it is not saved";
+      grade(Verdict::kMarginal, os.str());
+    }
+  }
+  return out;
+}
+
+}  // namespace hdrf::radiometry
