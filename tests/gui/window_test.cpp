@@ -148,23 +148,9 @@ TEST(StudioProgram, WithoutADisplayItSaysSo) {
 }  // namespace hdrf::gui
 
 int main(int argc, char** argv) {
-  const bool listing = [&] {
-    for (int i = 1; i < argc; ++i)
-      if (std::string(argv[i]).rfind("--gtest_list_tests", 0) == 0) return true;
-    return false;
-  }();
-  if (!listing && qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("HDRF_NO_XVFB") &&
-      std::system("command -v xvfb-run >/dev/null 2>&1") == 0) {
-    // Re-run under a virtual X server (once: HDRF_NO_XVFB stops recursion).
-    setenv("HDRF_NO_XVFB", "1", 1);
-    std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"), const_cast<char*>("-s"),
-                               const_cast<char*>("-screen 0 1920x1080x24")};
-    for (int i = 0; i < argc; ++i) args.push_back(argv[i]);
-    args.push_back(nullptr);
-    execvp("xvfb-run", args.data());
-  }
+  const bool display = hdrf::test::EnsureDisplay(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
-  if (listing || qEnvironmentVariableIsEmpty("DISPLAY")) return RUN_ALL_TESTS();
+  if (!display) return RUN_ALL_TESTS();
   QTemporaryDir config;  // never the user's own studio settings
   qputenv("XDG_CONFIG_HOME", config.path().toUtf8());
   hdrf::gui::VtkView::SetDefaultSurfaceFormat();

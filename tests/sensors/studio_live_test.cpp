@@ -32,6 +32,7 @@
 #include "io/source_spec.h"
 #include "sensors/profiles.h"
 #include "sim/builtin_sensor.h"
+#include "support/test_support.h"
 
 namespace hdrf::gui {
 namespace {
@@ -194,22 +195,9 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
 }  // namespace hdrf::gui
 
 int main(int argc, char** argv) {
-  const bool listing = [&] {
-    for (int i = 1; i < argc; ++i)
-      if (std::string(argv[i]).rfind("--gtest_list_tests", 0) == 0) return true;
-    return false;
-  }();
-  if (!listing && qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("HDRF_NO_XVFB") &&
-      std::system("command -v xvfb-run >/dev/null 2>&1") == 0) {
-    setenv("HDRF_NO_XVFB", "1", 1);
-    std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"), const_cast<char*>("-s"),
-                               const_cast<char*>("-screen 0 1920x1080x24")};
-    for (int i = 0; i < argc; ++i) args.push_back(argv[i]);
-    args.push_back(nullptr);
-    execvp("xvfb-run", args.data());
-  }
+  const bool display = hdrf::test::EnsureDisplay(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
-  if (listing || qEnvironmentVariableIsEmpty("DISPLAY")) return RUN_ALL_TESTS();
+  if (!display) return RUN_ALL_TESTS();
   // Before OpenNI2 loads the driver (it reads these once): the hot-plug control file, private
   // profile and settings folders.
   QTemporaryDir root;

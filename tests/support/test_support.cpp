@@ -1,9 +1,12 @@
 #include "support/test_support.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <vector>
 #include <memory>
 #include <fstream>
 #include <random>
@@ -78,6 +81,25 @@ std::string ExpectErrorContaining(const std::function<void()>& fn,
   }
   ADD_FAILURE() << "expected an error, none was thrown";
   return {};
+}
+
+}  // namespace hdrf::test
+
+namespace hdrf::test {
+
+bool EnsureDisplay(int argc, char** argv) {
+  bool listing = false;
+  for (int i = 1; i < argc; ++i) listing |= std::string(argv[i]).rfind("--gtest_list_tests", 0) == 0;
+  auto unset = [](const char* v) { return !std::getenv(v) || !*std::getenv(v); };
+  if (!listing && unset("DISPLAY") && unset("HDRF_NO_XVFB") && std::system("command -v xvfb-run >/dev/null 2>&1") == 0) {
+    setenv("HDRF_NO_XVFB", "1", 1);  // once: no recursion
+    std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"), const_cast<char*>("-s"),
+                               const_cast<char*>("-screen 0 1920x1080x24")};
+    for (int i = 0; i < argc; ++i) args.push_back(argv[i]);
+    args.push_back(nullptr);
+    execvp("xvfb-run", args.data());
+  }
+  return !listing && !unset("DISPLAY");
 }
 
 }  // namespace hdrf::test
