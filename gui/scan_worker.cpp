@@ -35,17 +35,6 @@ ScanWorker::~ScanWorker() {
 
 namespace {
 
-// The exposure parts of a live spec: what a replug must set again.
-sensors::LiveOptions ExposurePart(const sensors::LiveOptions& o) {
-  sensors::LiveOptions c;
-  c.auto_exposure = o.auto_exposure;
-  c.auto_white_balance = o.auto_white_balance;
-  c.exposure_ms = o.exposure_ms;
-  c.exposure_raw = o.exposure_raw;
-  c.gain = o.gain;
-  return c;
-}
-
 QString Describe(const sensors::DeviceEntry& e) {
   return e.serial.empty() ? QString::fromStdString(e.name)
                           : QStringLiteral("%1 (%2)").arg(QString::fromStdString(e.serial), QString::fromStdString(e.name));
@@ -62,7 +51,9 @@ void ScanWorker::OpenSource() {
   source_spec_ = settings_.source;
   live_ = dynamic_cast<sensors::LiveFrameSource*>(source_.get());
   if (live_) {
-    controls_ = ExposurePart(sensors::ParseLiveSpec(settings_.source));
+    // The spec's exposure parts are what a replug sets again (ApplyExposure reads only those).
+    controls_ = sensors::ParseLiveSpec(settings_.source);
+    camera_state_ = live_->camera().exposure();
     fps_ = 0;
     last_frame_time_ = -1;
   }
@@ -182,7 +173,7 @@ void ScanWorker::Step() {
       emit stateChanged(false, tr("Finished: %1 frames").arg(session_->frames()));
       return;
     }
-    if (live_) Record(live_->last());
+    if (live_) OnLiveFrame(live_->last());
     auto s = std::make_shared<Snapshot>();
     s->report = session_->Process(f);
     pipeline::Pipeline& pipe = session_->pipeline();
@@ -209,8 +200,8 @@ void ScanWorker::Step() {
     s->device = DeviceName(pipe.device());
     if (live_) s->live = Status();
     emit snapshot(std::move(s));
-  } catch (const sensors::DeviceLost& e) {
-    Lost(e.what());
+  } catch (const sensors::DeviceLost&) {
+    Lost();
   } catch (const std::exception& e) {
     running_ = false;
     emit failed(tr("Scan paused at frame %1: %2. The model so far is kept.")
@@ -223,7 +214,7 @@ void ScanWorker::Step() {
 void ScanWorker::Preview() {
   try {
     const sensors::LiveFrame f = live_->NextFrame();
-    Record(f);
+    OnLiveFrame(f);
     auto s = std::make_shared<Snapshot>();
     s->preview = true;
     s->color = f.color.Clone();
@@ -237,8 +228,8 @@ void ScanWorker::Preview() {
     s->frames_total = source_->size();
     s->live = Status();
     emit snapshot(std::move(s));
-  } catch (const sensors::DeviceLost& e) {
-    Lost(e.what());
+  } catch (const sensors::DeviceLost&) {
+    Lost();
   } catch (const std::exception& e) {
     // No frame in time, or the device failed: say so and keep trying (a camera that stops
     // sending is reported every 2 s, not silently shown as a frozen picture).
@@ -251,7 +242,9 @@ LiveStatus ScanWorker::Status() {
   sensors::OpenNiCamera& cam = live_->camera();
   st.device = cam.entry();
   st.has_camera_settings = cam.has_camera_settings();
-  if (st.has_camera_settings) st.exposure = cam.exposure();
+  // As read back when last set (reading the device's properties every frame would cost a
+  // round trip to the camera per frame).
+  st.exposure = camera_state_;
   const auto& dev = live_->profile().sensor.device;
   if (dev && dev->exposure_ms_per_unit) st.ms_per_unit = dev->exposure_ms_per_unit;
   st.own_profile = live_->profile().own;
@@ -263,7 +256,7 @@ LiveStatus ScanWorker::Status() {
   return st;
 }
 
-void ScanWorker::Record(const sensors::LiveFrame& f) {
+void ScanWorker::OnLiveFrame(const sensors::LiveFrame& f) {
   // Frame rate from the device clock (recent frames weigh most).
   if (last_frame_time_ >= 0 && f.timestamp > last_frame_time_) {
     const double r = 1.0 / (f.timestamp - last_frame_time_);
@@ -351,7 +344,7 @@ void ScanWorker::SetCameraControls(const sensors::LiveOptions& c) {
     }
     if (c.auto_exposure && *c.auto_exposure) controls_.exposure_ms.reset(), controls_.exposure_raw.reset();
     if (c.gain) controls_.gain = c.gain;
-    const sensors::ExposureState e = live_->camera().exposure();
+    const sensors::ExposureState e = camera_state_ = live_->camera().exposure();
     emit stateChanged(running_, tr("Camera: auto exposure %1, white balance %2, exposure %3, gain %4")
                                     .arg(e.auto_exposure ? tr("on") : tr("off"))
                                     .arg(e.auto_white_balance ? tr("auto") : tr("fixed"))
@@ -381,7 +374,7 @@ void ScanWorker::ListSensors() {
   emit sensorsListed(out);
 }
 
-void ScanWorker::Lost(const std::string& why) {
+void ScanWorker::Lost() {
   const bool was_running = running_;
   running_ = false;
   lost_ = true;
@@ -392,8 +385,6 @@ void ScanWorker::Lost(const std::string& why) {
   live_ = nullptr;
   source_.reset();
   const int frames = session_ ? session_->frames() : 0;
-  // `why` names the device again; the message says it once, and what happens next.
-  (void)why;
   const QString msg = was_running
       ? tr("Camera %1 was unplugged: the scan is paused after %2 frames and the model is kept. "
            "Plug it back in to resume.").arg(who).arg(frames)
@@ -424,6 +415,7 @@ void ScanWorker::TryReconnect(int attempt) {
       return;
     }
     live->ApplyExposure(controls_);
+    camera_state_ = live->camera().exposure();
     source_ = std::move(src);
     live_ = live;
     lost_ = false;

@@ -121,9 +121,9 @@ class ScanWorker : public QObject {
   void Preview();
   void Open();
   void OpenSource();
-  void Lost(const std::string& why);
+  void Lost();     // the camera was unplugged: pause, keep the model, wait for it
   void TryReconnect(int attempt);
-  void Record(const sensors::LiveFrame& f);
+  void OnLiveFrame(const sensors::LiveFrame& f);  // frame rate, and the recording if one runs
   void FinishRecording(const QString& why);
   LiveStatus Status();
   ScanSettings settings_;
@@ -131,6 +131,7 @@ class ScanWorker : public QObject {
   sensors::LiveFrameSource* live_ = nullptr;  // source_, when it is a live camera
   std::string source_spec_;                   // what source_ was opened from
   sensors::LiveOptions controls_;             // exposure controls in force (reapplied after a replug)
+  sensors::ExposureState camera_state_;       // as the camera read back after the last change
   bool lost_ = false, resume_ = false, loop_scheduled_ = false, reconnecting_ = false;
   std::string lost_serial_;
   std::unique_ptr<sensors::SequenceRecorder> recorder_;

@@ -112,25 +112,7 @@ SensorPanel::SensorPanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(rec);
 
   connect(refresh_, &QPushButton::clicked, this, &SensorPanel::refresh);
-  connect(devices_, &QComboBox::currentIndexChanged, this, [this](int i) {
-    if (i < 0 || i >= int(sensors_.size())) {
-      profile_->clear();
-      profile_->setStyleSheet({});
-      return;
-    }
-    const SensorListing& l = sensors_[std::size_t(i)];
-    if (l.entry.serial.empty()) {
-      profile_->setText(tr("This device did not answer (in use by another program?)"));
-      profile_->setStyleSheet(kWarnStyle);
-    } else if (l.own_profile) {
-      profile_->setText(tr("Calibrated: its own profile is used"));
-      profile_->setStyleSheet({});
-    } else {
-      profile_->setText(tr("Not calibrated: the built-in Xtion profile is used; its response is not this "
-                           "camera's own (calibrate it for true radiance)"));
-      profile_->setStyleSheet(kWarnStyle);
-    }
-  });
+  connect(devices_, &QComboBox::currentIndexChanged, this, &SensorPanel::ShowProfileNote);
   connect(open_, &QPushButton::clicked, this, [this] {
     if (devices_->currentIndex() >= 0) emit openCamera(SpecForSelection());
   });
@@ -168,6 +150,26 @@ SensorPanel::SensorPanel(QWidget* parent) : QWidget(parent) {
     emit startRecording(p);
   });
   ShowNoCamera(tr("No camera open"));
+}
+
+void SensorPanel::ShowProfileNote(int i) {
+  if (i < 0 || i >= int(sensors_.size())) {
+    profile_->clear();
+    profile_->setStyleSheet({});
+    return;
+  }
+  const SensorListing& l = sensors_[std::size_t(i)];
+  if (l.entry.serial.empty()) {
+    profile_->setText(tr("This device did not answer (in use by another program?)"));
+    profile_->setStyleSheet(kWarnStyle);
+  } else if (l.own_profile) {
+    profile_->setText(tr("Calibrated: its own profile is used"));
+    profile_->setStyleSheet({});
+  } else {
+    profile_->setText(tr("Not calibrated: the built-in Xtion profile is used; its response is not this "
+                         "camera's own (calibrate it for true radiance)"));
+    profile_->setStyleSheet(kWarnStyle);
+  }
 }
 
 void SensorPanel::resizeEvent(QResizeEvent* e) {
@@ -226,20 +228,15 @@ void SensorPanel::ShowSensors(const std::vector<SensorListing>& sensors) {
   open_->setEnabled(!sensors.empty());
   devices_->setCurrentIndex(sensors.empty() ? 0 : select);
   block.unblock();
-  emit devices_->currentIndexChanged(devices_->currentIndex());
+  ShowProfileNote(devices_->currentIndex());
 }
 
 void SensorPanel::ShowStatus(const LiveStatus& s) {
   have_camera_ = true;
   ms_per_unit_ = s.ms_per_unit;
-  for (QWidget* w : {static_cast<QWidget*>(ae_), static_cast<QWidget*>(awb_), static_cast<QWidget*>(gain_),
-                     static_cast<QWidget*>(record_)})
-    w->setEnabled(true);
-  if (!s.has_camera_settings) {
-    for (QWidget* w : {static_cast<QWidget*>(ae_), static_cast<QWidget*>(awb_), static_cast<QWidget*>(gain_),
-                       static_cast<QWidget*>(exposure_)})
-      w->setEnabled(false);
-  }
+  record_->setEnabled(true);
+  for (QWidget* w : {static_cast<QWidget*>(ae_), static_cast<QWidget*>(awb_), static_cast<QWidget*>(gain_)})
+    w->setEnabled(s.has_camera_settings);
   {
     const QSignalBlocker b1(ae_), b2(awb_), b3(exposure_), b4(gain_);
     ae_->setChecked(s.exposure.auto_exposure);

@@ -57,6 +57,7 @@ class SensorPanel : public QWidget {
 
  private:
   void SendExposure();
+  void ShowProfileNote(int device_index);
   QString NextRecordingFolder() const;
 
   QBoxLayout* layout_ = nullptr;

@@ -7,17 +7,13 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "radiometry/calibration_detail.h"
 
 namespace hdrf::radiometry {
 
 namespace {
 
-std::vector<double> DistinctExposures(const Sweep& s) {
-  std::vector<double> e = s.exposure_ms;
-  std::sort(e.begin(), e.end());
-  e.erase(std::unique(e.begin(), e.end()), e.end());
-  return e;
-}
+std::vector<double> DistinctExposures(const Sweep& s) { return detail::GroupByExposure(s).exposure; }
 
 std::string Ms(double v) {
   std::ostringstream os;
@@ -37,26 +33,17 @@ std::string Stops(double v) {
 
 LevelCoverage MeasureLevelCoverage(const Sweep& s, ClipLevels clip) {
   LevelCoverage out;
-  const std::vector<double> e = DistinctExposures(s);
-  std::vector<const ColorImage*> first;
-  for (double x : e)
-    for (std::size_t i = 0; i < s.images.size(); ++i)
-      if (s.exposure_ms[i] == x) {
-        first.push_back(&s.images[i]);
-        break;
-      }
+  std::vector<const ColorImage*> first;  // one frame per exposure
+  for (const auto& group : detail::GroupByExposure(s).images) first.push_back(&s.images[std::size_t(group[0])]);
   constexpr int kLo = 8, kHi = 247, kMin = 4;
   const std::size_t n = s.images.empty() ? 0 : s.images[0].size();
   for (int c = 0; c < 3; ++c) {
     std::array<int, 256> count{};
     for (std::size_t p = 0; p < n; p += 3) {
       int unclipped = 0;
-      for (const ColorImage* im : first) {
-        const int z = c == 0 ? (*im)[p].r : c == 1 ? (*im)[p].g : (*im)[p].b;
-        unclipped += z >= clip.lo && z <= clip.hi;
-      }
+      for (const ColorImage* im : first) unclipped += !detail::Clipped(detail::Level((*im)[p], c), clip);
       if (unclipped < 2) continue;
-      for (const ColorImage* im : first) ++count[std::size_t(c == 0 ? (*im)[p].r : c == 1 ? (*im)[p].g : (*im)[p].b)];
+      for (const ColorImage* im : first) ++count[detail::Level((*im)[p], c)];
     }
     int covered = 0, run = 0, best = 0;
     out.gap_from[c] = 1, out.gap_to[c] = 0;
