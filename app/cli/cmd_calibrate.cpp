@@ -16,6 +16,7 @@
 #include "io/sensor_json.h"
 #include "io/sweep.h"
 #include "radiometry/calibration.h"
+#include "radiometry/calibration_job.h"
 #include "radiometry/pcf.h"
 #include "radiometry/validation.h"
 
@@ -102,30 +103,18 @@ Command AddCalibrateCommand(CLI::App& app) {
     std::printf("sweep %s: %zu frames, %zu exposures from %.4g to %.4g ms\n", a->sweep.c_str(),
                 sweep.images.size(), per_exposure.size(), per_exposure.begin()->first,
                 per_exposure.rbegin()->first);
-    CheckSweepForCalibration(sweep);  // before the fit: too few exposures, reversed, moved, clipped
-    std::optional<EmorBasis> basis;
+    CalibrationSettings settings;
+    settings.method = a->method;
+    settings.emor_components = a->emor_components;
+    settings.threshold_passes = a->threshold_passes;
     if (a->method == "emor") {
       if (a->basis.empty())
         throw SettingError("--emor-basis", "--method emor needs the EMoR basis file invemor.txt");
-      basis = EmorBasis::Load(a->basis);
+      settings.basis = EmorBasis::Load(a->basis);
     }
-    auto fit_sweep = [&](const Sweep& s) {
-      if (a->method == "debevec") {
-        DebevecOptions o;
-        o.threshold_passes = a->threshold_passes;
-        return FitDebevec(s, o);
-      }
-      if (a->method == "robertson") {
-        RobertsonOptions o;
-        o.threshold_passes = a->threshold_passes;
-        return FitRobertson(s, o);
-      }
-      EmorOptions o;
-      o.components = a->emor_components;
-      o.threshold_passes = a->threshold_passes;
-      return FitEmor(s, *basis, o);
-    };
-    const ResponseFit fit = fit_sweep(sweep);
+    // Refuses before the fit: too few exposures, reversed, moved, clipped, flat.
+    const CalibrationOutcome run = RunCalibration(sweep, settings);
+    const ResponseFit& fit = run.fit;
     std::printf("\nresponse (%s%s), scaled so that f^-1(128) = 1 per channel\n", fit.method.c_str(),
                 a->threshold_passes > 0 ? ", refined on the level thresholds" : ", classic");
     const char* ch = "RGB";
@@ -144,30 +133,17 @@ Command AddCalibrateCommand(CLI::App& app) {
                     "(%.1f %% apart); --method debevec follows it more closely\n", a->emor_components,
                     100 * gap);
     }
-    sensor.response = fit.inverse;
-    NoiseModel noise;
-    bool have_noise = false;
-    std::optional<std::array<double, 3>> misfit;
-    try {
-      const NoiseFit nf = FitNoise(sweep, fit.inverse);
-      misfit = nf.rms_relative_residual;
-      noise = nf.noise;
-      have_noise = true;
+    if (run.noise_fit) {
       std::printf("\nnoise level function (Var R = R sigma_s^2 + sigma_c^2)\n");
       for (int c = 0; c < 3; ++c)
         std::printf("  %c: sigma_s %.5f  sigma_c %.6f  (%zu level thresholds, rms relative misfit %.2f)\n",
-                    ch[c], noise.sigma_s[c], noise.sigma_c[c], nf.levels[c].size(),
-                    nf.rms_relative_residual[c]);
-      sensor.noise = noise;
-    } catch (const Error& e) {
-      std::printf("\nnoise level function not fitted: %s\n", e.what());
-      sensor.noise.reset();
-      noise.sigma_s = {0.02f, 0.02f, 0.02f};  // for the merge check only
-      noise.sigma_c = {0.002f, 0.002f, 0.002f};
+                    ch[c], run.noise.sigma_s[c], run.noise.sigma_c[c], run.noise_fit->levels[c].size(),
+                    run.noise_fit->rms_relative_residual[c]);
+    } else {
+      std::printf("\nnoise level function not fitted: %s\n", run.noise_error.c_str());
     }
+    const CalibrationCheck& check = run.check;
     std::printf("\nchecking the fit (each exposure against the merge; the middle one held back and predicted)\n");
-    const CalibrationCheck check =
-        CheckCalibration(sweep, fit.inverse, noise, misfit, [&](const Sweep& s) { return fit_sweep(s).inverse; });
     for (const auto& e : check.consistency)
       std::printf("  %9.4g ms: median |deviation| %.3f stops over %ld samples\n", e.exposure_ms,
                   e.median_abs_stops, e.samples);
@@ -184,15 +160,12 @@ Command AddCalibrateCommand(CLI::App& app) {
                   "\nRedo the sweep: static camera and scene, auto exposure off, 5 or more exposures a stop or "
                   "less apart from mostly dark to mostly saturated");
     }
-    if (!check.noise_usable && have_noise) {
-      sensor.noise.reset();
-      have_noise = false;
-    }
+    sensor = run.Apply(sensor);
+    const bool have_noise = run.noise_saved();
     io::WriteSensorJson(a->out, sensor);
     std::printf("\nwrote %s (response%s)\n", a->out.c_str(), have_noise ? " and noise" : " only");
     if (!a->plots.empty()) {
-      const PcfTables pcf = ComputePcf(fit.inverse, noise);
-      WritePlots(a->plots, fit.inverse, pcf);
+      WritePlots(a->plots, fit.inverse, run.pcf);
       std::printf("wrote %s/response.png (f^-1 against level, R red, G green, B blue), "
                   "derivative.png (f' against level), pcf.png (p1, p2, p3 from top, 0..1)\n",
                   a->plots.c_str());

@@ -15,5 +15,6 @@ Command AddScanCommand(CLI::App& app);
 Command AddEvalCommand(CLI::App& app);
 Command AddSensorsCommand(CLI::App& app);
 Command AddRecordCommand(CLI::App& app);
+Command AddCaptureSweepCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

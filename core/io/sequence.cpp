@@ -121,7 +121,8 @@ SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor,
   if (fs::exists(folder) && !(fs::is_directory(folder) && fs::is_empty(folder)))
     throw InputError(folder, "output folder exists and is not empty; choose a new folder");
   std::error_code ec;
-  for (const char* sub : {"rgb", "depth"}) fs::create_directories(folder / sub, ec);
+  fs::create_directories(folder / "rgb", ec);
+  if (options.write_depth && !ec) fs::create_directories(folder / "depth", ec);
   if (options.write_hdr) fs::create_directories(folder / "hdr", ec);
   if (ec) throw InputError(folder, "cannot create folder: " + ec.message());
   WriteSensorJson(folder / "sensor.json", sensor);
@@ -131,11 +132,61 @@ SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor,
     s << header;
   };
   open(rgb_, "rgb.txt", "# colour images\n# timestamp filename\n");
-  open(depth_, "depth.txt", "# depth images\n# timestamp filename\n");
+  if (options.write_depth) open(depth_, "depth.txt", "# depth images\n# timestamp filename\n");
   if (options.write_exposure)
     open(exposure_, "exposure.txt", "# timestamp exposure_ms [analog_gain]\n");
   if (options.write_groundtruth)
     open(gt_, "groundtruth.txt", "# timestamp tx ty tz qx qy qz qw (camera-to-world, metres)\n");
+}
+
+SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor, Options options, bool)
+    : folder_(folder), sensor_(sensor), options_(options) {}
+
+SequenceWriter SequenceWriter::Reopen(const fs::path& folder, Options options, std::size_t keep_frames) {
+  SequenceWriter w(folder, ReadSensorJson(folder / "sensor.json"), options, true);
+  // The timestamp of the last colour frame kept; every list is cut after it.
+  std::vector<std::string> rgb_lines;
+  {
+    std::ifstream in(folder / "rgb.txt");
+    if (!in) throw InputError(folder / "rgb.txt", "cannot be read");
+    for (std::string line; std::getline(in, line);) rgb_lines.push_back(line);
+  }
+  double last = -1;
+  std::size_t kept = 0;
+  for (const std::string& line : rgb_lines) {
+    if (line.empty() || line[0] == '#') continue;
+    if (kept == keep_frames) break;
+    last = std::stod(line);
+    ++kept;
+  }
+  if (kept < keep_frames)
+    throw InputError(folder / "rgb.txt", "lists " + std::to_string(kept) + " frames, fewer than the " +
+                                             std::to_string(keep_frames) + " recorded as complete");
+  auto cut = [&](std::ofstream& s, const char* name) {
+    const fs::path file = folder / name;
+    std::vector<std::string> lines;
+    {
+      std::ifstream in(file);
+      for (std::string line; std::getline(in, line);)
+        if (line.empty() || line[0] == '#' || (kept > 0 && std::stod(line) <= last)) lines.push_back(line);
+    }
+    const fs::path tmp = file.string() + ".tmp";
+    {
+      std::ofstream out(tmp);
+      for (const std::string& line : lines) out << line << "\n";
+      if (!out) throw InputError(tmp, "write failed (disk full?)");
+    }
+    fs::rename(tmp, file);
+    s.open(file, std::ios::app);
+    if (!s) throw InputError(file, "cannot be opened for writing");
+  };
+  cut(w.rgb_, "rgb.txt");
+  if (options.write_depth) cut(w.depth_, "depth.txt");
+  if (options.write_exposure) cut(w.exposure_, "exposure.txt");
+  if (options.write_groundtruth) cut(w.gt_, "groundtruth.txt");
+  w.count_ = kept;
+  w.last_timestamp_ = last;
+  return w;
 }
 
 void SequenceWriter::Append(std::ofstream& out, const std::string& line, const char* name) {
@@ -156,6 +207,7 @@ void SequenceWriter::Add(double timestamp, const ColorImage& color, const DepthR
   const std::string name = TimestampName(timestamp);
   // Images first, lists after: a list never names an image that was not written.
   WriteColorPng(folder_ / "rgb" / (name + ".png"), color);
+  if (depth && !options_.write_depth) throw Error("sequence writer: depth given to a writer without depth");
   if (depth) WriteDepthPng(folder_ / "depth" / (name + ".png"), *depth);
   if (hdr && options_.write_hdr) WriteExr(folder_ / "hdr" / (name + ".exr"), *hdr);
   Append(rgb_, name + " rgb/" + name + ".png\n", "rgb.txt");

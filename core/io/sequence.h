@@ -76,6 +76,7 @@ std::string TimestampName(double t);
 class SequenceWriter {
  public:
   struct Options {
+    bool write_depth = true;  // false: no depth.txt nor depth/ (a sweep)
     bool write_exposure = true;
     bool write_groundtruth = true;
     bool write_hdr = false;
@@ -84,6 +85,10 @@ class SequenceWriter {
   SequenceWriter(const std::filesystem::path& folder, const SensorInfo& sensor, Options options);
   SequenceWriter(const std::filesystem::path& folder, const SensorInfo& sensor)
       : SequenceWriter(folder, sensor, Options{}) {}
+  // Reopens a sequence this writer made, to go on after an interruption: keeps its first
+  // `keep_frames` colour frames (and the list lines of their timestamps and before), drops
+  // the rest from the lists (their images stay, unlisted), and appends after them.
+  static SequenceWriter Reopen(const std::filesystem::path& folder, Options options, std::size_t keep_frames);
 
   // depth may be null (a sweep without depth); gt and hdr may be absent / null.
   void Add(double timestamp, const ColorImage& color, const DepthRawImage* depth,
@@ -92,6 +97,7 @@ class SequenceWriter {
   std::size_t size() const { return count_; }
 
  private:
+  SequenceWriter(const std::filesystem::path& folder, const SensorInfo& sensor, Options options, bool);
   void Append(std::ofstream& out, const std::string& line, const char* name);
   std::filesystem::path folder_;
   SensorInfo sensor_;

@@ -136,12 +136,31 @@ void CheckSweep(const Sweep& s) {
   if (usable * 7 < 200)
     throw Error(s.source + ": almost every pixel is clipped (saturated or black) in all but one "
                            "exposure; use a scene with mid-tones and a wider exposure range");
-  // A camera or scene that moved: the brightness order of image regions must be preserved
-  // between exposures (the response is monotonic). Judged on means of 4 x 4 pixel blocks:
-  // near black a steep response turns sensor noise into many levels (DoRF 159: +-10
-  // levels), and single pixels then swap order with no motion at all.
+  // A camera or scene that moved: judged per pair of consecutive exposures, so one move in
+  // a long sweep is not diluted.
+  for (std::size_t k = 0; k + 1 < g.images.size(); ++k) {
+    const OrderChange change = CompareBrightnessOrder(s.images[std::size_t(g.images[k][0])],
+                                                      s.images[std::size_t(g.images[k + 1][0])], clip);
+    if (change.moved()) {
+      std::ostringstream os;
+      os << s.source << ": the camera or the scene moved during the sweep (between "
+         << g.exposure[k] << " and " << g.exposure[k + 1] << " ms, " << int(100.0 * change.share)
+         << " % of image regions change brightness order); a sweep needs a static camera and a "
+            "static scene";
+      throw Error(os.str());
+    }
+  }
+}
+
+OrderChange CompareBrightnessOrder(const ColorImage& first, const ColorImage& second, ClipLevels clip) {
+  // The brightness order of image regions is preserved between exposures (the response is
+  // monotonic). Judged on means of 4 x 4 pixel blocks: near black a steep response turns
+  // sensor noise into many levels (DoRF 159: +-10 levels), and single pixels then swap
+  // order with no motion at all.
   constexpr int kBlock = 4;
-  const int bw = s.images[0].width() / kBlock, bh = s.images[0].height() / kBlock;
+  if (first.width() != second.width() || first.height() != second.height())
+    throw Error("frames of different sizes cannot be compared");
+  const int bw = first.width() / kBlock, bh = first.height() / kBlock;
   // Block pairs count when 8 levels apart in both frames. Over all 201 DoRF curves with
   // no motion at most 0.7 % of them swap order; a 9-pixel shift swaps 18 %.
   constexpr float kMargin = 8.f;
@@ -162,37 +181,24 @@ void CheckSweep(const Sweep& s) {
         }
     return m;
   };
-  if (bw * bh >= 16) {
-    std::mt19937 rng(99);
-    std::uniform_int_distribution<std::size_t> pick(0, std::size_t(bw) * std::size_t(bh) - 1);
-    // Judged per pair of consecutive exposures, so one move in a long sweep is not diluted.
-    std::vector<std::array<float, 3>> next = block_means(s.images[std::size_t(g.images[0][0])]);
-    for (std::size_t k = 0; k + 1 < g.images.size(); ++k) {
-      const auto a = std::move(next);
-      next = block_means(s.images[std::size_t(g.images[k + 1][0])]);
-      const auto& b = next;
-      long considered = 0, violations = 0;
-      for (int t = 0; t < 20000; ++t) {
-        const std::size_t p = pick(rng), q = pick(rng);
-        for (std::size_t c = 0; c < 3; ++c) {
-          const float ap = a[p][c], aq = a[q][c], bp = b[p][c], bq = b[q][c];
-          if (std::isnan(ap) || std::isnan(aq) || std::isnan(bp) || std::isnan(bq)) continue;
-          if (std::abs(ap - aq) <= kMargin || std::abs(bp - bq) <= kMargin) continue;
-          ++considered;
-          violations += (ap > aq) != (bp > bq);
-        }
-      }
-      if (considered > 200 && double(violations) / double(considered) > 0.05) {
-        std::ostringstream os;
-        os << s.source << ": the camera or the scene moved during the sweep (between "
-           << g.exposure[k] << " and " << g.exposure[k + 1] << " ms, "
-           << int(100.0 * double(violations) / double(considered))
-           << " % of image regions change brightness order); a sweep needs a static camera and a "
-              "static scene";
-        throw Error(os.str());
-      }
+  OrderChange result;
+  if (bw * bh < 16) return result;
+  const auto a = block_means(first), b = block_means(second);
+  std::mt19937 rng(99);
+  std::uniform_int_distribution<std::size_t> pick(0, std::size_t(bw) * std::size_t(bh) - 1);
+  long violations = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const std::size_t p = pick(rng), q = pick(rng);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const float ap = a[p][c], aq = a[q][c], bp = b[p][c], bq = b[q][c];
+      if (std::isnan(ap) || std::isnan(aq) || std::isnan(bp) || std::isnan(bq)) continue;
+      if (std::abs(ap - aq) <= kMargin || std::abs(bp - bq) <= kMargin) continue;
+      ++result.considered;
+      violations += (ap > aq) != (bp > bq);
     }
   }
+  if (result.considered > 0) result.share = double(violations) / double(result.considered);
+  return result;
 }
 
 void ScaleToUnitAt128(InverseResponse& r) {

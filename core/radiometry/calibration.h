@@ -32,6 +32,18 @@ struct ClipLevels {
   int lo = 3, hi = 254;
 };
 
+// How many pairs of image regions swap brightness order between two frames of one static
+// scene (taken at the same or at different exposures: the response is monotonic, so the
+// order holds unless the camera or the scene moved). Pairs count where both regions are
+// unclipped and 8 levels apart in both frames.
+struct OrderChange {
+  double share = 0;     // of the pairs considered
+  long considered = 0;
+  // Over all 201 DoRF curves with no motion at most 0.7 % swap; a 9-pixel shift swaps 18 %.
+  bool moved() const { return considered > 200 && share > 0.05; }
+};
+OrderChange CompareBrightnessOrder(const ColorImage& first, const ColorImage& second, ClipLevels clip = {});
+
 struct DebevecOptions {
   int samples = 6000;     // pixel locations sampled (stratified by brightness)
   double lambda = 100.0;  // smoothness weight on g'' (g = ln f^-1)

@@ -93,6 +93,35 @@ const char* VerdictName(Verdict v) {
   }
 }
 
+LevelTable LevelResiduals(const Sweep& s, const InverseResponse& inverse, const RadianceImage& merged,
+                          ClipLevels clip) {
+  LevelTable out;
+  const detail::Groups g = detail::GroupByExposure(s);
+  for (int c = 0; c < 3; ++c) {
+    std::array<std::vector<float>, kLevels> per_level;
+    for (std::size_t k = 0; k < g.exposure.size(); ++k) {
+      const ColorImage& im = s.images[std::size_t(g.images[k][0])];
+      for (std::size_t p = 0; p < im.size(); p += 2) {
+        const int z = detail::Level(im[p], c);
+        const Float3 L = merged[p];
+        const float l = c == 0 ? L.x : (c == 1 ? L.y : L.z);
+        if (detail::Clipped(z, clip) || !(l > 0) || !(inverse.table[c][z] > 0)) continue;
+        per_level[std::size_t(z)].push_back(float(std::log2(inverse.table[c][z] / (g.exposure[k] * l))));
+      }
+    }
+    for (int z = 0; z < kLevels; ++z) {
+      auto& v = per_level[std::size_t(z)];
+      if (v.size() < 20) {
+        out[c][z] = NAN;
+        continue;
+      }
+      std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+      out[c][z] = v[v.size() / 2];
+    }
+  }
+  return out;
+}
+
 CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inverse, const NoiseModel& noise,
                                   const std::optional<std::array<double, 3>>& noise_misfit,
                                   const std::function<InverseResponse(const Sweep&)>& refit,
@@ -105,6 +134,7 @@ CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inv
   // Every exposure against the merge of all.
   const RadianceImage merged = MergeHdr(sweep, inverse, noise);
   out.consistency = MergeConsistency(sweep, inverse, merged);
+  out.level_residual_stops = LevelResiduals(sweep, inverse, merged);
   {
     int over_good = 0, over_redo = 0, judged = 0;
     const ExposureConsistency* worst = nullptr;

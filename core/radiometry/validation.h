@@ -38,7 +38,15 @@ struct CalibrationCheck {
   ExposureConsistency held_out{};                 // the middle exposure predicted from the others
   bool noise_usable = true;                       // false: the noise fit should not be saved
   LevelCoverage coverage;
+  LevelTable level_residual_stops{};  // LevelResiduals of the fit (NaN: too few samples)
 };
+
+// Per channel and level, the median over the sweep's samples at that level of
+// log2(f^-1(I) / exposure / L_merged), in stops: where along the curve the fit is off (a
+// well-fitted curve stays within a few hundredths of a stop). NaN where a level has fewer
+// than 20 samples.
+LevelTable LevelResiduals(const Sweep& sweep, const InverseResponse& inverse, const RadianceImage& merged,
+                          ClipLevels clip = {});
 
 // Limits (stops of median deviation; the noise fit's rms relative misfit).
 struct CheckLimits {

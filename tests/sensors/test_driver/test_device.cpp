@@ -15,6 +15,9 @@
 //   connects it again; a device closed while unplugged goes on along its path where it
 //   stopped when it is opened again (the operator held the camera still), so a scan that
 //   resumes after a replug can keep tracking
+//   further words in the control file: "still" holds the camera where it is (a camera on a
+//   tripod, for exposure sweeps; without it the camera moves on), "light=F" scales the
+//   scene's radiance by F (light=1000: a scene saturated at every exposure)
 // $HDRF_TEST_DEVICE_FRAMES_PER_VIEW (default 1) slows the camera down: each view is held for
 // that many frames (a scan slower than 30 Hz then still sees small steps).
 // The camera moves back and forth along 48 views of the room's handheld path (rendered
@@ -49,6 +52,10 @@ constexpr double kUnitMs = 0.1;  // raw exposure unit
 constexpr const char* kUri = "hdrf-test://0";
 
 std::string Env(const char* name, const char* fallback);
+
+// Set from the control file by the driver's watcher.
+std::atomic<bool> g_still{false};
+std::atomic<float> g_light{1.f};
 
 int FramesPerView() {
   static const int n = std::max(1, std::atoi(Env("HDRF_TEST_DEVICE_FRAMES_PER_VIEW", "1").c_str()));
@@ -220,7 +227,8 @@ class TestStream : public oni::driver::StreamBase {
   }
 
   // Called by the device's frame thread.
-  void Deliver(int index, std::uint64_t timestamp_us, std::uint32_t seed,
+  // `index` numbers the frames; `position` is how far along the path the camera is.
+  void Deliver(int index, int position, std::uint64_t timestamp_us, std::uint32_t seed,
                hdrf::sim::AutoExposure& ae, double& last_metered) {
     OniVideoMode mode;
     bool mirror, ae_on, awb_on;
@@ -236,7 +244,7 @@ class TestStream : public oni::driver::StreamBase {
     }
     const int w = mode.resolutionX, h = mode.resolutionY;
     const int cycle = 2 * kViews - 2;
-    const int phase = (index / FramesPerView()) % cycle;
+    const int phase = (position / FramesPerView()) % cycle;
     const int view_index = phase < kViews ? phase : cycle - phase;
     const View& view = Views().Get(w, h, view_index);
     OniFrame* frame = getServices().acquireFrame();
@@ -268,7 +276,7 @@ class TestStream : public oni::driver::StreamBase {
         const double mean = (sum[0] + sum[1] + sum[2]) / 3;
         for (int c = 0; c < 3; ++c) g[c] = float(std::clamp(mean / std::max(sum[c], 1e-9), 0.5, 2.0));
       }
-      const float gf = float(gain) / 100.f;
+      const float gf = float(gain) / 100.f * g_light.load();
       for (std::size_t k = 0; k < scaled.size(); ++k)
         scaled[k] = {scaled[k].x * g[0] * gf, scaled[k].y * g[1] * gf, scaled[k].z * g[2] * gf};
       const hdrf::ColorImage color =
@@ -406,6 +414,7 @@ class TestDevice : public oni::driver::DeviceBase {
       for (int i = 0; i < kViews && running_; ++i) Views().Get(w, h, i);
     const auto t0 = std::chrono::steady_clock::now();
     const int first = resume_->exchange(0);
+    int position = first;
     for (int index = first; running_; ++index) {
       std::this_thread::sleep_until(t0 + std::chrono::microseconds(std::int64_t(index - first) * 33333));
       if (!plugged_->load()) continue;  // unplugged: no frames
@@ -418,8 +427,9 @@ class TestDevice : public oni::driver::DeviceBase {
       const std::uint64_t ts = std::uint64_t(index) * 33333u;
       // Colour first: auto exposure meters it; depth follows with the same timestamp.
       std::sort(live.begin(), live.end(), [](TestStream* a, TestStream* b) { return a->type() < b->type(); });
-      for (TestStream* s : live) s->Deliver(index, ts, seed, ae, metered);
-      delivered_ = index;
+      for (TestStream* s : live) s->Deliver(index, position, ts, seed, ae, metered);
+      delivered_ = position;
+      if (!g_still.load()) ++position;
     }
   }
 
@@ -486,11 +496,20 @@ class TestDriver : public oni::driver::DriverBase {
   void disableFrameSync(void*) override {}
 
  private:
+  // The first word (plugged, unplugged); the others set the scene ("still", "light=F").
   std::string ControlSays() const {
     if (control_.empty()) return "";
     std::ifstream in(control_);
-    std::string word;
+    std::string word, more;
     in >> word;
+    bool still = false;
+    float light = 1.f;
+    while (in >> more) {
+      if (more == "still") still = true;
+      else if (more.rfind("light=", 0) == 0) light = std::strtof(more.c_str() + 6, nullptr);
+    }
+    g_still = still;
+    g_light = light > 0 ? light : 1.f;
     return word;
   }
   void Watch() {

@@ -1,0 +1,433 @@
+#include "io/sweep_capture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "io/json_file.h"
+#include "io/sequence.h"
+#include "io/sweep.h"
+
+namespace hdrf::io {
+
+namespace fs = std::filesystem;
+using radiometry::SweepCamera;
+using FixAt = CaptureProblem::FixAt;
+
+namespace {
+
+std::string Ms(double ms) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g ms", ms);
+  return buf;
+}
+std::string Percent(double share) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f %%", 100 * share);
+  return buf;
+}
+
+bool Cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(); }
+
+// Sets the exposure and drops the frames that may still carry the old one.
+double Expose(SweepCamera& camera, double ms, int settle) {
+  const double actual = camera.SetExposure(ms);
+  for (int i = 0; i < settle; ++i) camera.Grab();
+  return actual;
+}
+
+struct FrameStats {
+  double high = 0, low = 0;  // shares of pixels with a channel >= 250, all channels <= 5
+  double mean_green = 0;
+};
+FrameStats Stats(const ColorImage& im) {
+  FrameStats s;
+  long high = 0, low = 0;
+  double sum = 0;
+  for (std::size_t p = 0; p < im.size(); ++p) {
+    const Rgb8 v = im[p];
+    high += std::max({v.r, v.g, v.b}) >= 250;
+    low += std::max({v.r, v.g, v.b}) <= 5;
+    sum += v.g;
+  }
+  const double n = double(std::max<std::size_t>(im.size(), 1));
+  s.high = double(high) / n;
+  s.low = double(low) / n;
+  s.mean_green = sum / n;
+  return s;
+}
+
+// The relative change of mean level between two frames of one exposure, over pixels
+// unclipped in both (all channels); 0 when too few.
+double MeanChange(const ColorImage& a, const ColorImage& b) {
+  double sa = 0, sb = 0;
+  long n = 0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    const Rgb8 u = a[p], v = b[p];
+    const int lo = std::min({u.r, u.g, u.b, v.r, v.g, v.b}), hi = std::max({u.r, u.g, u.b, v.r, v.g, v.b});
+    if (lo < 10 || hi > 245) continue;
+    sa += u.r + u.g + u.b;
+    sb += v.r + v.g + v.b;
+    ++n;
+  }
+  if (n < 500 || sa <= 0) return 0;
+  return std::abs(sb / sa - 1.0);
+}
+
+nlohmann::json ToJson(const CaptureRecord& r) {
+  const SweepPlanOptions& o = r.plan.options;
+  return {{"camera", r.camera},
+          {"serial", r.serial},
+          {"exposures_ms", r.plan.exposures_ms},
+          {"options",
+           {{"step_stops", o.step_stops}, {"repeats", o.repeats}, {"settle_frames", o.settle_frames},
+            {"max_retries", o.max_retries}, {"flicker_share", o.flicker_share}}},
+          {"steps_done", r.steps_done},
+          {"recaptures", r.recaptures}};
+}
+
+void WriteRecord(const fs::path& folder, const CaptureRecord& r) {
+  const fs::path file = folder / "capture.json", tmp = folder / "capture.json.tmp";
+  {
+    std::ofstream out(tmp);
+    out << ToJson(r).dump(2) << "\n";
+    if (!out) throw InputError(tmp, "write failed (disk full?)");
+  }
+  fs::rename(tmp, file);  // atomic: a crash leaves the old record or the new one
+}
+
+}  // namespace
+
+void SweepPlanOptions::Check() const {
+  if (!(step_stops >= 0.1 && step_stops <= 2)) throw SettingError("step", "must be 0.1 to 2 stops");
+  if (repeats < 1 || repeats > 50) throw SettingError("repeats", "must be 1 to 50 (3 or more for the noise fit)");
+  if (min_ms < 0 || max_ms < 0 || (min_ms > 0 && max_ms > 0 && max_ms <= min_ms))
+    throw SettingError("min-ms/max-ms", "need 0 < min < max (0: metered)");
+  if (max_exposures < 3 || max_exposures > 200) throw SettingError("max-exposures", "must be 3 to 200");
+  if (settle_frames < 0 || settle_frames > 30) throw SettingError("settle", "must be 0 to 30 frames");
+  if (max_retries < 0 || max_retries > 20) throw SettingError("retries", "must be 0 to 20");
+  if (!(flicker_share > 0 && flicker_share < 0.5)) throw SettingError("flicker", "must be in (0, 0.5)");
+}
+
+void VerifyManualExposure(SweepCamera& camera) {
+  const radiometry::ColourLock lock = camera.colour_lock();
+  if (lock.auto_exposure)
+    throw CaptureProblem(FixAt::kSetup,
+                         camera.description() + ": auto exposure is on (as the camera reports it); the camera would "
+                         "choose its own exposures and the sweep's would not be the ones recorded. Lock auto "
+                         "exposure and try again.");
+  if (lock.auto_white_balance)
+    throw CaptureProblem(FixAt::kSetup,
+                         camera.description() + ": auto white balance is on (as the camera reports it); it would "
+                         "change the colour gains between exposures. Lock white balance and try again.");
+  // The exposure must act on the images: two stops apart, the mid-tones must brighten.
+  const radiometry::ExposureLimits lim = camera.limits();
+  double a = std::clamp(std::sqrt(lim.min_ms * lim.max_ms), lim.min_ms, lim.max_ms / 4);
+  for (int tries = 0; tries < 8; ++tries) {
+    const double ta = Expose(camera, a, 2);
+    const FrameStats sa = Stats(camera.Grab());
+    const double tb = Expose(camera, 4 * a, 2);
+    const FrameStats sb = Stats(camera.Grab());
+    if (sa.high > 0.5) {  // too bright to judge: shorter
+      if (a / 4 < lim.min_ms) break;
+      a /= 4;
+      continue;
+    }
+    if (sb.low > 0.5) {  // too dark to judge: longer
+      if (16 * a > lim.max_ms) break;
+      a *= 4;
+      continue;
+    }
+    if (sb.mean_green < sa.mean_green * 1.2 + 2) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, " (mean level %.1f at %s, %.1f at %s)", sa.mean_green, Ms(ta).c_str(),
+                    sb.mean_green, Ms(tb).c_str());
+      throw CaptureProblem(FixAt::kSetup,
+                           camera.description() + ": the images did not brighten when the exposure was set 2 stops "
+                           "longer" + buf + "; the camera is not taking the exposure it is given (automatic exposure "
+                           "still acting?). Lock auto exposure and try again.");
+    }
+    return;
+  }
+  // The scene is all saturated or all black at every pair tried: PlanSweep says which.
+}
+
+SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const CaptureProgress& progress,
+                    const std::atomic<bool>* cancel) {
+  options.Check();
+  VerifyManualExposure(camera);
+  const radiometry::ExposureLimits lim = camera.limits();
+  SweepPlan plan;
+  plan.options = options;
+  CaptureStatus status;
+  status.stage = "metering";
+  auto measure = [&](double ms) {
+    status.exposure_ms = Expose(camera, ms, options.settle_frames);
+    if (progress) progress(status);
+    return Stats(camera.Grab());
+  };
+  // Shortest: the brightest parts (all but 0.5 %) unclipped.
+  double lo = options.min_ms > 0 ? camera.Quantise(options.min_ms) : 0;
+  if (lo == 0) {
+    double t = camera.Quantise(std::clamp(10.0, lim.min_ms, lim.max_ms));
+    FrameStats s = measure(t);
+    // Shorter while that unclips more of the image: a minority that stays clipped at half
+    // the exposure (within 0.2 % of the image) is a light source, and shorter frames would
+    // only add dark, noisy ones.
+    while (s.high > 0.005 && t > lim.min_ms && !Cancelled(cancel)) {
+      const double shorter = camera.Quantise(std::max(t / 2, lim.min_ms));
+      const FrameStats next = measure(shorter);
+      if (s.high < 0.5 && s.high - next.high < 0.002) break;
+      t = shorter;
+      s = next;
+    }
+    while (s.high <= 0.005 && s.mean_green < 30 && 2 * t <= lim.max_ms && !Cancelled(cancel)) {
+      // Everything dark: longer, while the brightest stay unclipped.
+      const FrameStats longer = measure(camera.Quantise(2 * t));
+      if (longer.high > 0.005) break;
+      t = camera.Quantise(2 * t);
+      s = longer;
+    }
+    lo = t;
+  }
+  {
+    const FrameStats s = measure(lo);
+    plan.saturated_at_shortest = s.high;
+    if (s.high > 0.5)
+      throw CaptureProblem(FixAt::kSetup,
+                           camera.description() + ": even at the shortest exposure (" + Ms(lo) + ") " +
+                           Percent(s.high) + " of the image is saturated. Dim the lights, point the camera at a "
+                           "darker scene or lower its gain, then plan again.");
+    if (s.high > 0.005)
+      plan.warnings.push_back(Percent(s.high) + " of the image is saturated even at the shortest exposure (" + Ms(lo) +
+                              "): the brightest parts add nothing to the top of the curve");
+  }
+  // Longest: 90 % of the image saturated.
+  double hi = options.max_ms > 0 ? camera.Quantise(options.max_ms) : 0;
+  if (hi == 0) {
+    double t = lo;
+    FrameStats s = measure(t);
+    while (s.high < 0.9 && 2 * t <= lim.max_ms && !Cancelled(cancel)) {
+      t = camera.Quantise(2 * t);
+      s = measure(t);
+    }
+    hi = t;
+  }
+  {
+    const FrameStats s = measure(hi);
+    plan.dark_at_longest = s.low;
+    if (s.low > 0.5)
+      throw CaptureProblem(FixAt::kSetup,
+                           camera.description() + ": even at the longest exposure (" + Ms(hi) + ") " + Percent(s.low) +
+                           " of the image is black. Light the scene, or point the camera at a brighter one, then "
+                           "plan again.");
+  }
+  if (Cancelled(cancel)) throw Error("planning cancelled");
+  if (hi <= lo) hi = camera.Quantise(lo * std::pow(2.0, 4 * options.step_stops));
+  // Exposures: `step` stops apart (wider when there would be too many), as the camera sets them.
+  double step = options.step_stops;
+  const double range_stops = std::log2(hi / lo);
+  if (range_stops / step + 1 > options.max_exposures) {
+    step = range_stops / (options.max_exposures - 1);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "the scene spans %.1f stops: steps widened to %.2f stops to stay within %d exposures",
+                  range_stops, step, options.max_exposures);
+    plan.warnings.push_back(buf);
+  }
+  const int n = int(std::ceil(range_stops / step - 1e-6)) + 1;
+  for (int k = 0; k < n; ++k) {
+    const double t = camera.Quantise(std::min(hi, lo * std::pow(2.0, k * step)));
+    if (plan.exposures_ms.empty() || t > plan.exposures_ms.back() * 1.0001) plan.exposures_ms.push_back(t);
+  }
+  if (plan.exposures_ms.size() < 3)
+    throw CaptureProblem(FixAt::kSetup, camera.description() + ": the camera's exposures (" + Ms(lo) + " to " + Ms(hi) +
+                                            ") give fewer than 3 distinct exposures; calibration needs 3 or more");
+  // Preview: one frame per exposure; which levels do they cover?
+  radiometry::Sweep preview;
+  preview.source = camera.description() + " (preview sweep)";
+  status.stage = "preview";
+  status.steps = int(plan.exposures_ms.size());
+  for (std::size_t k = 0; k < plan.exposures_ms.size(); ++k) {
+    if (Cancelled(cancel)) throw Error("planning cancelled");
+    status.step = int(k);
+    status.exposure_ms = Expose(camera, plan.exposures_ms[k], options.settle_frames);
+    if (progress) progress(status);
+    preview.images.push_back(camera.Grab());
+    preview.exposure_ms.push_back(status.exposure_ms);
+  }
+  plan.coverage = radiometry::MeasureLevelCoverage(preview);
+  const char* ch = "RGB";
+  for (int c = 0; c < 3; ++c) {
+    const double share = plan.coverage.share[std::size_t(c)];
+    std::string gap;
+    if (plan.coverage.gap_from[std::size_t(c)] <= plan.coverage.gap_to[std::size_t(c)])
+      gap = " (widest gap: levels " + std::to_string(plan.coverage.gap_from[std::size_t(c)]) + " to " +
+            std::to_string(plan.coverage.gap_to[std::size_t(c)]) + ")";
+    if (share < 0.5)
+      throw CaptureProblem(FixAt::kSetup, camera.description() + ": the planned sweep covers only " + Percent(share) +
+                                              " of the levels of channel " + ch[c] + gap +
+                                              ". Point the camera at a scene with dark and bright parts and many "
+                                              "shades between (not a wall or a grey card), then plan again.");
+    if (share < 0.9)
+      plan.warnings.push_back("the planned sweep covers " + Percent(share) + " of the levels of channel " +
+                              std::string(1, ch[c]) + gap + ": the curve is interpolated there");
+  }
+  return plan;
+}
+
+CaptureRecord ReadCaptureRecord(const fs::path& folder) {
+  const fs::path file = folder / "capture.json";
+  const nlohmann::json j = ReadJsonFile(file);
+  CaptureRecord r;
+  try {
+    r.camera = j.at("camera").get<std::string>();
+    r.serial = j.at("serial").get<std::string>();
+    r.plan.exposures_ms = j.at("exposures_ms").get<std::vector<double>>();
+    const auto& o = j.at("options");
+    r.plan.options.step_stops = o.at("step_stops").get<double>();
+    r.plan.options.repeats = o.at("repeats").get<int>();
+    r.plan.options.settle_frames = o.at("settle_frames").get<int>();
+    r.plan.options.max_retries = o.at("max_retries").get<int>();
+    r.plan.options.flicker_share = o.at("flicker_share").get<double>();
+    r.steps_done = j.at("steps_done").get<int>();
+    r.recaptures = j.value("recaptures", 0);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, std::string("is not a capture record: ") + e.what());
+  }
+  try {
+    r.plan.options.Check();
+  } catch (const SettingError& e) {
+    throw InputError(file, e.what());
+  }
+  if (r.plan.exposures_ms.size() < 3 || !std::is_sorted(r.plan.exposures_ms.begin(), r.plan.exposures_ms.end()) ||
+      r.plan.exposures_ms.front() <= 0)
+    throw InputError(file, "'exposures_ms' must hold 3 or more positive exposures in ascending order");
+  if (r.steps_done < 0 || r.steps_done > int(r.plan.exposures_ms.size()))
+    throw InputError(file, "'steps_done' is outside the plan");
+  return r;
+}
+
+SweepCapture::SweepCapture(SweepCamera& camera, SweepPlan plan, fs::path folder)
+    : SweepCapture(camera, CaptureRecord{camera.description(), camera.serial(), std::move(plan), 0, 0},
+                   std::move(folder), false) {}
+
+SweepCapture::SweepCapture(SweepCamera& camera, CaptureRecord record, fs::path folder, bool resume)
+    : camera_(camera), record_(std::move(record)), folder_(std::move(folder)), resume_(resume) {
+  record_.plan.options.Check();
+  if (record_.plan.exposures_ms.size() < 3) throw Error("a sweep plan needs 3 or more exposures");
+}
+
+SweepCapture SweepCapture::Resume(SweepCamera& camera, const fs::path& folder) {
+  CaptureRecord r = ReadCaptureRecord(folder);
+  if (r.serial != camera.serial())
+    throw InputError(folder / "capture.json",
+                     "was captured from " + r.camera + " (serial " + r.serial + "), not from " + camera.description() +
+                         " (serial " + camera.serial() + "); resume with the same camera, or start a new sweep");
+  return SweepCapture(camera, std::move(r), folder, true);
+}
+
+CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atomic<bool>* cancel) {
+  const SweepPlanOptions& o = record_.plan.options;
+  const auto& exposures = record_.plan.exposures_ms;
+  VerifyManualExposure(camera_);
+  SequenceWriter::Options wo;
+  wo.write_groundtruth = false;
+  wo.write_depth = false;
+  std::optional<SequenceWriter> writer;
+  if (resume_) {
+    writer.emplace(SequenceWriter::Reopen(folder_, wo, std::size_t(record_.steps_done) * std::size_t(o.repeats)));
+  } else {
+    writer.emplace(folder_, camera_.sensor(), wo);  // refuses a folder that is not empty
+    WriteRecord(folder_, record_);
+    resume_ = true;  // a second Run goes on from here
+  }
+  CaptureResult result;
+  result.steps = int(exposures.size());
+  result.recaptures = record_.recaptures;
+  CaptureStatus status;
+  status.stage = "capture";
+  status.steps = result.steps;
+  status.recaptures = record_.recaptures;
+  // The step before, for the motion check across exposures: on resume, the last frame written.
+  std::optional<ColorImage> previous;
+  if (record_.steps_done > 0) {
+    const radiometry::Sweep done = ReadSweep(folder_);
+    if (!done.images.empty()) previous = done.images[std::size_t(record_.steps_done) * std::size_t(o.repeats) - 1].Clone();
+  }
+  double t_next = writer->size() > 0 ? double(writer->size()) / 30.0 : 0.0;
+  for (int k = record_.steps_done; k < result.steps; ++k) {
+    status.step = k;
+    std::string failure;
+    std::vector<ColorImage> frames;
+    double actual = 0;
+    for (int attempt = 0; attempt <= o.max_retries; ++attempt) {
+      if (Cancelled(cancel)) break;
+      if (attempt > 0) {
+        ++record_.recaptures;
+        status.recaptures = record_.recaptures;
+        status.note = "re-capturing " + Ms(exposures[std::size_t(k)]) + ": " + failure;
+      }
+      actual = Expose(camera_, exposures[std::size_t(k)], o.settle_frames);
+      status.exposure_ms = actual;
+      if (progress) progress(status);
+      frames.clear();
+      for (int r = 0; r < o.repeats && !Cancelled(cancel); ++r) frames.push_back(camera_.Grab());
+      if (Cancelled(cancel)) break;
+      failure.clear();
+      for (std::size_t r = 1; r < frames.size() && failure.empty(); ++r) {
+        const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(frames[0], frames[r]);
+        if (m.moved()) failure = "the image changed between repeats (" + Percent(m.share) + " of image regions changed "
+                                 "brightness order): the camera or the scene moved";
+        const double d = MeanChange(frames[0], frames[r]);
+        if (failure.empty() && d > o.flicker_share)
+          failure = "the brightness changed by " + Percent(d) + " between repeats: flickering light";
+      }
+      if (failure.empty() && previous) {
+        const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(*previous, frames[0]);
+        if (m.moved())
+          failure = "the image no longer matches the exposure before (" + Percent(m.share) +
+                    " of image regions changed brightness order): the camera or the scene moved";
+      }
+      if (failure.empty()) break;
+    }
+    if (Cancelled(cancel)) {
+      result.cancelled = true;
+      break;
+    }
+    if (!failure.empty()) {
+      WriteRecord(folder_, record_);
+      const bool across = failure.find("exposure before") != std::string::npos;
+      throw CaptureProblem(
+          FixAt::kCapture,
+          "At " + Ms(exposures[std::size_t(k)]) + " (step " + std::to_string(k + 1) + " of " +
+              std::to_string(result.steps) + ") " + failure + ", " + std::to_string(o.max_retries + 1) +
+              " times in a row. " +
+              (failure.find("flicker") != std::string::npos
+                   ? "Switch off fluorescent or dimmed LED lights (or use daylight), then resume."
+                   : across ? "The camera was moved: put it back exactly where it was, or start a new sweep."
+                            : "Put the camera on a tripod or a table and keep the scene still, then resume.") +
+              " The " + std::to_string(k) + " steps captured so far are kept in " + folder_.string() + ".");
+    }
+    for (const ColorImage& f : frames) {
+      writer->Add(t_next, f, nullptr, actual, std::nullopt, nullptr);
+      t_next += 1.0 / 30.0;
+    }
+    previous = frames.back().Clone();
+    record_.steps_done = k + 1;
+    if (std::abs(actual - exposures[std::size_t(k)]) > 1e-9 * actual) record_.plan.exposures_ms[std::size_t(k)] = actual;
+    WriteRecord(folder_, record_);
+    status.frames_written = int(writer->size());
+    status.note.clear();
+    if (progress) progress(status);
+  }
+  result.steps_done = record_.steps_done;
+  result.frames = int(writer->size());
+  result.recaptures = record_.recaptures;
+  return result;
+}
+
+}  // namespace hdrf::io
