@@ -42,21 +42,24 @@ double Expose(SweepCamera& camera, double ms, int settle) {
 
 struct FrameStats {
   double high = 0, low = 0;  // shares of pixels with a channel >= 250, all channels <= 5
+  double dim = 0;            // share with all channels <= 20
   double mean_green = 0;
 };
 FrameStats Stats(const ColorImage& im) {
   FrameStats s;
-  long high = 0, low = 0;
+  long high = 0, low = 0, dim = 0;
   double sum = 0;
   for (std::size_t p = 0; p < im.size(); ++p) {
     const Rgb8 v = im[p];
     high += std::max({v.r, v.g, v.b}) >= 250;
     low += std::max({v.r, v.g, v.b}) <= 5;
+    dim += std::max({v.r, v.g, v.b}) <= 20;
     sum += v.g;
   }
   const double n = double(std::max<std::size_t>(im.size(), 1));
   s.high = double(high) / n;
   s.low = double(low) / n;
+  s.dim = double(dim) / n;
   s.mean_green = sum / n;
   return s;
 }
@@ -76,6 +79,16 @@ double MeanChange(const ColorImage& a, const ColorImage& b) {
   }
   if (n < 500 || sa <= 0) return 0;
   return std::abs(sb / sa - 1.0);
+}
+
+// Share of pixels with every channel in 20..235 (well exposed).
+double MidTones(const ColorImage& im) {
+  long n = 0;
+  for (std::size_t p = 0; p < im.size(); ++p) {
+    const Rgb8 v = im[p];
+    n += std::min({v.r, v.g, v.b}) >= 20 && std::max({v.r, v.g, v.b}) <= 235;
+  }
+  return double(n) / double(std::max<std::size_t>(im.size(), 1));
 }
 
 nlohmann::json ToJson(const CaptureRecord& r) {
@@ -184,6 +197,11 @@ SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const 
       if (s.high < 0.5 && s.high - next.high < 0.002) break;
       t = shorter;
       s = next;
+    }
+    // The darkest levels need pixels near black: shorter while under 0.2 % of the image is.
+    while (s.dim < 0.002 && t > lim.min_ms && !Cancelled(cancel)) {
+      t = camera.Quantise(std::max(t / 2, lim.min_ms));
+      s = measure(t);
     }
     while (s.high <= 0.005 && s.mean_green < 30 && 2 * t <= lim.max_ms && !Cancelled(cancel)) {
       // Everything dark: longer, while the brightest stay unclipped.
@@ -358,6 +376,12 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
     const radiometry::Sweep done = ReadSweep(folder_);
     if (!done.images.empty()) previous = done.images[std::size_t(record_.steps_done) * std::size_t(o.repeats) - 1].Clone();
   }
+  std::optional<ColorImage> reference;
+  double reference_midtones = -1;
+  if (previous) {
+    reference = previous->Clone();
+    reference_midtones = MidTones(*reference);
+  }
   double t_next = writer->size() > 0 ? double(writer->size()) / 30.0 : 0.0;
   for (int k = record_.steps_done; k < result.steps; ++k) {
     status.step = k;
@@ -386,8 +410,11 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
         if (failure.empty() && d > o.flicker_share)
           failure = "the brightness changed by " + Percent(d) + " between repeats: flickering light";
       }
-      if (failure.empty() && previous) {
-        const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(*previous, frames[0]);
+      // Against the step before, and against the best-exposed step so far (a move during
+      // dark steps, where few regions can be compared, is caught once the light returns).
+      for (const ColorImage* before : {previous ? &*previous : nullptr, reference ? &*reference : nullptr}) {
+        if (!failure.empty() || !before) continue;
+        const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(*before, frames[0]);
         if (m.moved())
           failure = "the image no longer matches the exposure before (" + Percent(m.share) +
                     " of image regions changed brightness order): the camera or the scene moved";
@@ -417,6 +444,10 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
       t_next += 1.0 / 30.0;
     }
     previous = frames.back().Clone();
+    if (const double m = MidTones(frames.back()); m > reference_midtones) {
+      reference = frames.back().Clone();
+      reference_midtones = m;
+    }
     record_.steps_done = k + 1;
     if (std::abs(actual - exposures[std::size_t(k)]) > 1e-9 * actual) record_.plan.exposures_ms[std::size_t(k)] = actual;
     WriteRecord(folder_, record_);

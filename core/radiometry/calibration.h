@@ -163,9 +163,12 @@ struct ExposureConsistency {
   double median_abs_stops;
   long samples;
 };
+// With `noise`, only samples whose predicted noise (sqrt(R sigma_s^2 + sigma_c^2) / R) is
+// under 5 % count: on a noisy camera the dark levels' spread is noise, not a wrong exposure.
 std::vector<ExposureConsistency> MergeConsistency(const Sweep& sweep,
                                                   const InverseResponse& inverse,
                                                   const RadianceImage& merged,
-                                                  ClipLevels clip = {});
+                                                  ClipLevels clip = {},
+                                                  const NoiseModel* noise = nullptr);
 
 }  // namespace hdrf::radiometry

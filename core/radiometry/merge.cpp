@@ -68,7 +68,8 @@ RadianceImage MergeHdr(const Sweep& s, const InverseResponse& inv, const NoiseMo
 }
 
 std::vector<ExposureConsistency> MergeConsistency(const Sweep& s, const InverseResponse& inv,
-                                                  const RadianceImage& merged, ClipLevels clip) {
+                                                  const RadianceImage& merged, ClipLevels clip,
+                                                  const NoiseModel* noise) {
   const Groups g = GroupByExposure(s);
   std::vector<ExposureConsistency> out;
   for (std::size_t k = 0; k < g.exposure.size(); ++k) {
@@ -79,6 +80,10 @@ std::vector<ExposureConsistency> MergeConsistency(const Sweep& s, const InverseR
         const int z = Level(im[p], c);
         const float L = c == 0 ? merged[p].x : (c == 1 ? merged[p].y : merged[p].z);
         if (z < std::max(32, clip.lo) || z > std::min(224, clip.hi) || !(L > 0)) continue;
+        if (noise) {  // only samples the noise leaves within 5 %: the rest measure the noise
+          const double R = inv.table[c][z], ss = noise->sigma_s[c], sc = noise->sigma_c[c];
+          if (!(R > 0) || R * ss * ss + sc * sc > 0.0025 * R * R) continue;
+        }
         d.push_back(std::abs(std::log2(float(inv.table[c][z] / g.exposure[k]) / L)));
       }
     double med = NAN;

@@ -133,7 +133,7 @@ CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inv
   };
   // Every exposure against the merge of all.
   const RadianceImage merged = MergeHdr(sweep, inverse, noise);
-  out.consistency = MergeConsistency(sweep, inverse, merged);
+  out.consistency = MergeConsistency(sweep, inverse, merged, {}, &noise);
   out.level_residual_stops = LevelResiduals(sweep, inverse, merged);
   {
     int over_good = 0, over_redo = 0, judged = 0;
@@ -168,7 +168,7 @@ CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inv
   try {
     const InverseResponse without = refit(others);
     const RadianceImage merged_others = MergeHdr(others, without, noise);
-    const auto c = MergeConsistency(held_back, without, merged_others);
+    const auto c = MergeConsistency(held_back, without, merged_others, {}, &noise);
     if (!c.empty()) out.held_out = c.front();
     out.held_out.exposure_ms = held;
     if (out.held_out.samples < 100)

@@ -62,11 +62,6 @@ SyntheticSweepCamera::SyntheticSweepCamera(SyntheticSweepOptions options) : o_(s
   s.noise = o_.noise;
   auto source = std::make_shared<SyntheticSource>(s);
   radiance_ = source->RenderView(0).radiance;
-  if (o_.shift_after >= 0) {
-    shifted_ = RadianceImage(o_.width, o_.height);
-    for (int y = 0; y < o_.height; ++y)
-      for (int x = 0; x < o_.width; ++x) shifted_(x, y) = radiance_(std::min(x + o_.shift_px, o_.width - 1), y);
-  }
   source_ = std::move(source);
 }
 
@@ -77,6 +72,13 @@ std::string SyntheticSweepCamera::description() const {
 
 void SyntheticSweepCamera::SetAutomatic(bool auto_exposure, bool auto_white_balance) {
   lock_ = {auto_exposure, auto_white_balance};
+}
+
+void SyntheticSweepCamera::KnockAside(int px) {
+  RadianceImage shifted(o_.width, o_.height);
+  for (int y = 0; y < o_.height; ++y)
+    for (int x = 0; x < o_.width; ++x) shifted(x, y) = radiance_(std::clamp(x + px, 0, o_.width - 1), y);
+  radiance_ = std::move(shifted);
 }
 
 double SyntheticSweepCamera::Quantise(double ms) const {
@@ -98,7 +100,7 @@ double SyntheticSweepCamera::SetExposure(double ms) {
 
 ColorImage SyntheticSweepCamera::Grab() {
   const int n = grabs_++;
-  const RadianceImage& L = (o_.shift_after >= 0 && n >= o_.shift_after) ? shifted_ : radiance_;
+  const RadianceImage& L = radiance_;
   double t = exposure_ms_;
   if (lock_.auto_exposure) t = std::clamp(0.5 / std::max(MeterCentre(L), 1e-6), o_.limits.min_ms, o_.limits.max_ms);
   if (o_.flicker > 0) t *= 1.0 + o_.flicker * ((n % 2) ? 1.0 : -1.0);

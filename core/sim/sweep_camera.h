@@ -20,11 +20,9 @@ struct SyntheticSweepOptions {
   radiometry::NoiseModel noise;          // in the units of that scaled response
   std::string response_name = "xtion";   // named in description()
   radiometry::ExposureLimits limits{0.05, 2000.0};
-  // Frames whose mean brightness flickers by this share (0: steady light), and a camera
-  // knocked aside by `shift_px` pixels after `shift_after` grabs (-1: never): the faults the
-  // capture checks must catch.
+  // Frames whose mean brightness flickers by this share (0: steady light): a fault the
+  // capture checks must catch (KnockAside is the other).
   double flicker = 0;
-  int shift_after = -1, shift_px = 6;
 
   SyntheticSweepOptions();  // the built-in Xtion response and the sweep noise of the tests
   void Check() const;       // throws SettingError naming the key
@@ -51,10 +49,12 @@ class SyntheticSweepCamera : public radiometry::SweepCamera {
   // The truth, as a calibration of this camera should find it (f^-1(128) = 1).
   const radiometry::InverseResponse& true_response() const { return o_.response; }
   int grabs() const { return grabs_; }
+  // The camera knocked aside: from the next grab on the view is shifted by `px` pixels.
+  void KnockAside(int px);
 
  private:
   SyntheticSweepOptions o_;
-  RadianceImage radiance_, shifted_;
+  RadianceImage radiance_;
   double exposure_ms_ = 10;
   radiometry::ColourLock lock_{true, true};  // as cameras start: automatic
   int grabs_ = 0;

@@ -1,0 +1,80 @@
+#include "calibration_wizard/calibration_wizard.h"
+
+#include <QDir>
+#include <QScreen>
+#include <QThread>
+#include <QTimer>
+#include <cstdio>
+
+#include "calibration_wizard/wizard_pages.h"
+
+namespace hdrf::wizard {
+
+CalibrationWizard::CalibrationWizard(WizardSettings options, QWidget* parent)
+    : QWizard(parent), options_(std::move(options)) {
+  setObjectName("calibration_wizard");
+  setWindowTitle(tr("Camera calibration"));
+  setWizardStyle(QWizard::ClassicStyle);
+  setOption(QWizard::NoBackButtonOnStartPage);
+  setOption(QWizard::HaveHelpButton, false);
+  setPage(kSource, new SourcePage(this));
+  setPage(kSetup, new SetupPage(this));
+  setPage(kCapture, new CapturePage(this));
+  setPage(kFit, new FitPage(this));
+  setPage(kValidate, new ValidatePage(this));
+  setPage(kSave, new SavePage(this));
+  setStartId(kSource);
+  resize(1180, 820);
+}
+
+CalibrationWizard::~CalibrationWizard() {
+  cancel_ = true;
+  if (worker_) worker_->wait();
+}
+
+bool CalibrationWizard::RunTask(std::function<void()> work, std::function<void(const QString&)> done) {
+  if (worker_) return false;
+  cancel_ = false;
+  auto error = std::make_shared<QString>();
+  worker_ = QThread::create([work = std::move(work), error] {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      *error = QString::fromUtf8(e.what());
+      if (error->isEmpty()) *error = tr("failed (no message)");
+    }
+  });
+  connect(worker_, &QThread::finished, this, [this, done = std::move(done), error] {
+    worker_->deleteLater();
+    worker_ = nullptr;
+    done(*error);
+  });
+  worker_->start();
+  return true;
+}
+
+void CalibrationWizard::PageDone(const QString& name) {
+  if (!options_.screenshots.isEmpty()) {
+    QDir().mkpath(options_.screenshots);
+    const QString file = QDir(options_.screenshots).filePath(QString("%1-%2.png").arg(currentId() + 1, 2, 10, QChar('0')).arg(name));
+    // Painted as it is now (the page's results shown), at the window's size.
+    grab().save(file);
+  }
+  if (!options_.automatic) return;
+  QTimer::singleShot(0, this, [this] {
+    if (currentId() == kSave)
+      accept();
+    else
+      next();
+  });
+}
+
+void CalibrationWizard::Fail(const QString& message) {
+  if (!options_.automatic) return;
+  std::fprintf(stderr, "calibration wizard: %s\n", message.toLocal8Bit().constData());
+  exit_code_ = 1;
+  emit failed(message);
+  QTimer::singleShot(0, this, [this] { reject(); });
+}
+
+}  // namespace hdrf::wizard
