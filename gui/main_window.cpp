@@ -1,5 +1,7 @@
 #include "gui/main_window.h"
 
+#include "calibration_wizard/calibration_wizard.h"
+
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -382,6 +384,9 @@ void MainWindow::BuildMenus() {
   scan->addAction(tr("Pause"), this, &MainWindow::PauseScan);
   scan->addAction(tr("Stop"), this, &MainWindow::StopScan);
   scan->addAction(tr("Reset (apply engine settings)"), this, &MainWindow::ResetScan);
+  QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  QAction* calibrate = tools->addAction(tr("Calibrate camera…"), this, &MainWindow::OpenCalibrationWizard);
+  calibrate->setObjectName("action_calibrate");
   QMenu* view = menuBar()->addMenu(tr("&View"));
   for (auto it = docks_.begin(); it != docks_.end(); ++it) view->addAction(it.value()->toggleViewAction());
   view->addSeparator();
@@ -390,6 +395,23 @@ void MainWindow::BuildMenus() {
     restoreState(default_state_);
     for (QDockWidget* d : docks_) d->show();
   });
+}
+
+void MainWindow::OpenCalibrationWizard() {
+  if (wizard_) {
+    wizard_->raise();
+    wizard_->activateWindow();
+    return;
+  }
+  // The wizard opens its camera itself: a camera the studio has open shows as in use there
+  // until the studio's preview or scan is stopped.
+  wizard_ = new wizard::CalibrationWizard(wizard::WizardSettings{}, this);
+  wizard_->setAttribute(Qt::WA_DeleteOnClose);
+  connect(wizard_, &wizard::CalibrationWizard::saved, this, [this](const QString& profile, const QString&) {
+    statusBar()->showMessage(tr("Calibration saved: %1 (used from now on for that camera)").arg(profile), 15000);
+    QMetaObject::invokeMethod(worker_, &ScanWorker::ListSensors, Qt::QueuedConnection);
+  });
+  wizard_->show();
 }
 
 ScanSettings MainWindow::CurrentSettings() const {

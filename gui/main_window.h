@@ -4,6 +4,7 @@
 #pragma once
 
 #include <QMainWindow>
+#include <QPointer>
 #include <QMap>
 #include <QThread>
 #include <memory>
@@ -20,6 +21,10 @@ class QSpinBox;
 class QSlider;
 class QTimer;
 class QDockWidget;
+
+namespace hdrf::wizard {
+class CalibrationWizard;
+}
 
 namespace hdrf::gui {
 
@@ -88,7 +93,8 @@ class MainWindow : public QMainWindow {
   void BuildSensorPanel();
   void ConnectSensors();
   void OnPlug(const QString& uri, bool connected);
-  void ShowCameraPanel();  // raises the camera panel and the colour view
+  void ShowCameraPanel();
+  void OpenCalibrationWizard();  // Tools > Calibrate camera (one at a time)  // raises the camera panel and the colour view
   void LoadSettings();
   void SaveSettings() const;
   void OnSnapshot(std::shared_ptr<const Snapshot> s);
@@ -105,6 +111,7 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<ToneMapper> tone_;
   ToneSettings tone_settings_;
   std::shared_ptr<const Snapshot> latest_, shown_;
+  QPointer<wizard::CalibrationWizard> wizard_;
   std::shared_ptr<const mesh::Mesh> mesh_shown_;
   qint64 mesh_time_ms_ = 0;
   QTimer* render_timer_ = nullptr;
