@@ -97,7 +97,7 @@ void ShowConsistency(PlotWidget& plot, const radiometry::CalibrationOutcome& out
   plot.Clear();
   plot.SetTitles(Tr("Each exposure against the merge of all"), Tr("exposure (ms)"), Tr("median |deviation| (stops)"));
   plot.SetLogX(true);
-  PlotSeries all{Tr("every exposure"), {}, {}, QColor(40, 90, 220), true};
+  PlotSeries all{Tr("every exposure"), {}, {}, QColor(40, 90, 220), true, false, 3.5};
   PlotSeries line{"", {}, {}, QColor(40, 90, 220)};
   for (const radiometry::ExposureConsistency& e : out.check.consistency) {
     all.x.push_back(e.exposure_ms);
@@ -106,7 +106,7 @@ void ShowConsistency(PlotWidget& plot, const radiometry::CalibrationOutcome& out
   line.x = all.x;
   line.y = all.y;
   PlotSeries held{Tr("held back, predicted from the others"), {out.check.held_out.exposure_ms},
-                  {out.check.held_out.median_abs_stops}, QColor(214, 40, 40), true};
+                  {out.check.held_out.median_abs_stops}, QColor(214, 40, 40), true, false, 5};
   plot.SetSeries({line, all, held});
   plot.AddReference(limits.good_stops, Tr("good"));
   plot.AddReference(limits.redo_stops, Tr("redo"));

@@ -171,7 +171,7 @@ void PlotWidget::Render(QPainter& p, const QRect& rect) const {
       for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
         if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (log_x_ && s.x[i] <= 0) || (log_y_ && s.y[i] <= 0))
           continue;
-        p.drawEllipse(QPointF(px(s.x[i]), py(s.y[i])), 1.8, 1.8);
+        p.drawEllipse(QPointF(px(s.x[i]), py(s.y[i])), s.radius, s.radius);
       }
       p.setBrush(Qt::NoBrush);
       continue;

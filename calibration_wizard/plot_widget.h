@@ -18,6 +18,7 @@ struct PlotSeries {
   QColor color;
   bool points = false;             // dots instead of a line
   bool dashed = false;
+  double radius = 1.8;             // of the dots
 };
 
 class PlotWidget : public QWidget {

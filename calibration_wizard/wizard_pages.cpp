@@ -7,6 +7,7 @@
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFormLayout>
+#include <QFrame>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -541,10 +542,18 @@ CapturePage::CapturePage(CalibrationWizard* w) : w_(w) {
   v->addWidget(status_);
   problem_ = ProblemLabel("capture_problem");
   v->addWidget(problem_);
+  auto* row2 = new QHBoxLayout;
   log_ = new QPlainTextEdit;
   log_->setObjectName("capture_log");
   log_->setReadOnly(true);
-  v->addWidget(log_, 1);
+  row2->addWidget(log_, 1);
+  frame_ = new QLabel(tr("The last frame captured shows here."));
+  frame_->setObjectName("capture_frame");
+  frame_->setAlignment(Qt::AlignCenter);
+  frame_->setMinimumSize(400, 300);
+  frame_->setFrameShape(QFrame::StyledPanel);
+  row2->addWidget(frame_);
+  v->addLayout(row2, 1);
   connect(start_, &QPushButton::clicked, this, [this] { Start(false); });
   connect(resume_, &QPushButton::clicked, this, [this] { Start(true); });
   connect(cancel_, &QPushButton::clicked, this, [this] { w_->cancel_flag() = true; });
@@ -620,6 +629,13 @@ void CapturePage::Start(bool resume) {
                                  .arg(s.frames_written)
                                  .arg(s.recaptures));
       if (!s.note.empty()) self->log_->appendPlainText(QString::fromStdString(s.note));
+      if (s.frame) {
+        self->log_->appendPlainText(tr("Step %1: %2 ms, done").arg(s.step + 1).arg(s.exposure_ms, 0, 'g', 4));
+        const ColorImage& f = *s.frame;
+        const QImage q(reinterpret_cast<const uchar*>(f.data()), f.width(), f.height(), 3 * f.width(), QImage::Format_RGB888);
+        self->frame_->setPixmap(QPixmap::fromImage(q.scaled(self->frame_->size() - QSize(8, 8), Qt::KeepAspectRatio,
+                                                            Qt::SmoothTransformation)));
+      }
     }, Qt::QueuedConnection);
   };
   std::atomic<bool>* cancel = &w_->cancel_flag();

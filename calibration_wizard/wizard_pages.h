@@ -81,7 +81,7 @@ class CapturePage : public QWizardPage {
   QLineEdit* folder_;
   QPushButton *start_, *cancel_, *resume_, *back_to_setup_;
   QProgressBar* progress_;
-  QLabel *status_, *problem_;
+  QLabel *status_, *problem_, *frame_;
   QPlainTextEdit* log_;
   bool running_ = false, complete_ = false;
 };

@@ -453,7 +453,9 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
     WriteRecord(folder_, record_);
     status.frames_written = int(writer->size());
     status.note.clear();
+    status.frame = std::make_shared<const ColorImage>(frames.back().Clone());
     if (progress) progress(status);
+    status.frame.reset();
   }
   result.steps_done = record_.steps_done;
   result.frames = int(writer->size());

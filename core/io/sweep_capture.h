@@ -9,6 +9,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,7 @@ struct CaptureStatus {
   int frames_written = 0;
   int recaptures = 0;    // steps taken again (motion, flicker)
   std::string note;      // the last re-capture's reason, or ""
+  std::shared_ptr<const ColorImage> frame;  // the step's last frame, once the step is written
 };
 using CaptureProgress = std::function<void(const CaptureStatus&)>;
 

@@ -155,6 +155,12 @@ TEST(Wizard, AutomaticStopsWithTheReasonOnABadSource) {
   EXPECT_FALSE(fs::exists(sensors::ProfileFolder()));
 }
 
+// HDRF_DOCS_SHOTS=DIR: the pages as the operator sees them, for docs/calibration_wizard.md.
+void DocsShot(QWidget& w, const char* name) {
+  const char* dir = std::getenv("HDRF_DOCS_SHOTS");
+  if (dir && *dir) w.grab().save(QString("%1/%2.png").arg(dir, name));
+}
+
 template <class T>
 T* Find(QWidget& w, const char* name) {
   T* t = w.findChild<T*>(name);
@@ -191,6 +197,7 @@ TEST(Wizard, PagesDrivenByHand) {
   ASSERT_TRUE(WaitFor([&] { return !w.busy() && !problem->text().isEmpty(); }));
   EXPECT_TRUE(problem->text().contains("auto exposure is on")) << problem->text().toStdString();
   EXPECT_FALSE(w.currentPage()->isComplete());
+  DocsShot(w, "wizard_setup_auto_exposure_on");
   ae->setChecked(true);
   QTest::mouseClick(Find<QPushButton>(w, "setup_plan"), Qt::LeftButton);
   ASSERT_TRUE(WaitFor([&] { return w.currentPage()->isComplete(); }));
@@ -206,6 +213,7 @@ TEST(Wizard, PagesDrivenByHand) {
   ASSERT_TRUE(WaitFor([&] { return !w.busy(); }));
   QPlainTextEdit* log = Find<QPlainTextEdit>(w, "capture_log");
   EXPECT_TRUE(log->toPlainText().contains("Cancelled")) << log->toPlainText().toStdString();
+  DocsShot(w, "wizard_capture_cancelled");
   EXPECT_FALSE(w.currentPage()->isComplete());
   QPushButton* resume = Find<QPushButton>(w, "capture_resume");
   ASSERT_TRUE(resume->isEnabled());
