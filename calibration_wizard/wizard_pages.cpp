@@ -60,6 +60,14 @@ void ShowProblem(QLabel* l, const QString& text) {
   l->setVisible(!text.isEmpty());
 }
 
+// "R 98 %, G 100 %, B 97 %"
+QString CoverageText(const radiometry::LevelCoverage& c) {
+  return QString("R %1 %, G %2 %, B %3 %")
+      .arg(int(100 * c.share[0] + 0.5))
+      .arg(int(100 * c.share[1] + 0.5))
+      .arg(int(100 * c.share[2] + 0.5));
+}
+
 QString HomePath(const QString& sub) { return QDir::home().filePath("HDRFusion/" + sub); }
 
 // The colour frame with clipped pixels shown red (any channel >= 250) and black ones blue
@@ -491,15 +499,13 @@ void SetupPage::Plan() {
                 planned_ = true;
                 const auto& e = plan->exposures_ms;
                 QString text = tr("<b>Plan:</b> %1 exposures from %2 to %3 ms, %4 frames each (%5 frames). "
-                                  "Levels covered by the preview sweep: R %6 %, G %7 %, B %8 %.")
+                                  "Levels covered by the preview sweep: %6.")
                                    .arg(e.size())
                                    .arg(e.front(), 0, 'g', 4)
                                    .arg(e.back(), 0, 'g', 4)
                                    .arg(plan->options.repeats)
                                    .arg(int(e.size()) * plan->options.repeats)
-                                   .arg(int(100 * plan->coverage.share[0] + 0.5))
-                                   .arg(int(100 * plan->coverage.share[1] + 0.5))
-                                   .arg(int(100 * plan->coverage.share[2] + 0.5));
+                                   .arg(CoverageText(plan->coverage));
                 for (const std::string& wmsg : plan->warnings) text += "<br>⚠ " + Q(wmsg).toHtmlEscaped();
                 plan_label_->setText(text);
                 emit completeChanged();
@@ -865,13 +871,11 @@ void ValidatePage::initializePage() {
   const QString names[3] = {tr("Good"), tr("Marginal"), tr("Redo")};
   verdict_->setText(tr("Verdict: %1").arg(names[int(c.verdict)]));
   verdict_->setStyleSheet(QString("color: %1").arg(kColour[int(c.verdict)]));
-  QString text = tr("Held back %1 ms: predicted from the others within %2 stops (median). Levels covered: R %3 %, "
-                    "G %4 %, B %5 %. Noise level function: %6.")
+  QString text = tr("Held back %1 ms: predicted from the others within %2 stops (median). Levels covered: %3. "
+                    "Noise level function: %4.")
                      .arg(c.held_out.exposure_ms, 0, 'g', 4)
                      .arg(c.held_out.median_abs_stops, 0, 'f', 3)
-                     .arg(int(100 * c.coverage.share[0] + 0.5))
-                     .arg(int(100 * c.coverage.share[1] + 0.5))
-                     .arg(int(100 * c.coverage.share[2] + 0.5))
+                     .arg(CoverageText(c.coverage))
                      .arg(out->noise_saved() ? tr("saved") : tr("not saved"));
   if (!c.reasons.empty()) {
     text += "<ul>";

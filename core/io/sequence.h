@@ -76,10 +76,10 @@ std::string TimestampName(double t);
 class SequenceWriter {
  public:
   struct Options {
-    bool write_depth = true;  // false: no depth.txt nor depth/ (a sweep)
     bool write_exposure = true;
     bool write_groundtruth = true;
     bool write_hdr = false;
+    bool write_depth = true;  // false: no depth.txt nor depth/ (a sweep)
   };
   // Creates the folder (it must be empty or absent) and writes sensor.json.
   SequenceWriter(const std::filesystem::path& folder, const SensorInfo& sensor, Options options);

@@ -22,7 +22,7 @@ std::uintmax_t SizeOr0(const fs::path& p) {
 SequenceRecorder::SequenceRecorder(const fs::path& folder, const SensorInfo& sensor, std::size_t queue)
     : folder_(folder),
       writer_(std::make_unique<io::SequenceWriter>(
-          folder, sensor, io::SequenceWriter::Options{true, false, false})),
+          folder, sensor, io::SequenceWriter::Options{.write_exposure = true, .write_groundtruth = false, .write_hdr = false})),
       capacity_(std::max<std::size_t>(queue, 1)) {
   thread_ = std::thread([this] { Run(); });
 }

@@ -25,6 +25,8 @@
 #include "sensors/recorder.h"
 #include "sim/builtin_sensor.h"
 #include "sim/synthetic_source.h"
+#include "support/test_support.h"
+#include "test_device_control.h"
 
 namespace {
 
@@ -35,29 +37,8 @@ using namespace hdrf::sensors;
 
 const std::string kSerial = "HDRF-SIM-0001";
 
-// Set before OpenNI2 loads the driver (it reads them once): a control file for hot plug and
-// a private profile folder.
-struct Environment {
-  fs::path root, control;
-  Environment() {
-    root = fs::temp_directory_path() / ("hdrf_sensors_" + std::to_string(getpid()));
-    fs::create_directories(root / "xdg");
-    control = root / "control";
-    std::ofstream(control) << "plugged\n";
-    setenv("HDRF_TEST_DEVICE_CONTROL", control.c_str(), 1);
-    setenv("XDG_DATA_HOME", (root / "xdg").c_str(), 1);
-  }
-  ~Environment() {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-  }
-  void Plug(bool on) const { std::ofstream(control) << (on ? "plugged\n" : "unplugged\n"); }
-};
-const Environment& Env() {
-  static Environment env;
-  return env;
-}
-const Environment& g_env = Env();
+// Set before OpenNI2 loads the driver (it reads them once): hot plug and profiles.
+const test::TestDeviceControl g_env("hdrf_sensors", "plugged");
 
 // The test device's own profile: the built-in response and its exposure unit (0.1 ms).
 void SaveTestProfile() {
@@ -250,7 +231,7 @@ std::vector<Pose> Scan(pipeline::FrameSource& src, int frames, sensors::Sequence
 
 TEST(Sensors, RecordingScannedLaterMatchesTheLiveScan) {
   SaveTestProfile();
-  const fs::path folder = g_env.root / "recording";
+  const fs::path folder = g_env.root() / "recording";
   std::vector<Pose> live_poses;
   long written = 0;
   {
@@ -285,7 +266,7 @@ std::uint64_t Hash(const ColorImage& c) {
 
 TEST(Sensors, OniRoundTripKeepsEveryFrameAndTheExposureSidecar) {
   SaveTestProfile();
-  const fs::path file = g_env.root / "take.oni";
+  const fs::path file = g_env.root() / "take.oni";
   std::set<std::uint64_t> seen;
   int noted = 0;
   {
@@ -323,7 +304,7 @@ TEST(Sensors, OniRoundTripKeepsEveryFrameAndTheExposureSidecar) {
 }
 
 TEST(Sensors, FullDiskLeavesAReadableSequence) {
-  const fs::path mnt = g_env.root / "small";
+  const fs::path mnt = g_env.root() / "small";
   fs::create_directories(mnt);
   if (mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=4m") != 0)
     GTEST_SKIP() << "SKIPPED: cannot mount a small tmpfs here (needs root and mount rights): " << std::strerror(errno);
@@ -362,7 +343,7 @@ TEST(Sensors, FullDiskLeavesAReadableSequence) {
 
 TEST(Sensors, ProfilesFollowTheSerial) {
   const DeviceEntry dev{"Some camera", "Vendor", "usb://1", "SER/42"};
-  EXPECT_EQ(ProfilePath("SER/42"), g_env.root / "xdg" / "hdrfusion" / "sensors" / "SER_42.json");
+  EXPECT_EQ(ProfilePath("SER/42"), g_env.root() / "xdg" / "hdrfusion" / "sensors" / "SER_42.json");
   const Profile fallback = ProfileFor(dev, ParseCaptureMode("vga"));
   EXPECT_FALSE(fallback.own);
   ASSERT_FALSE(fallback.sensor.warnings.empty());
@@ -382,7 +363,7 @@ TEST(Sensors, ProfilesFollowTheSerial) {
 
 TEST(Sensors, CliListsRecordsAndScansALiveDevice) {
   SaveTestProfile();
-  const fs::path out = g_env.root / "cli_take";
+  const fs::path out = g_env.root() / "cli_take";
   auto run = [](const std::string& args) {
     const std::string cmd = std::string(HDRF_CLI) + " " + args + " 2>&1";
     std::string text;
@@ -404,9 +385,9 @@ TEST(Sensors, CliListsRecordsAndScansALiveDevice) {
   int with = 0;
   for (const auto& fi : seq.frames()) with += fi.exposure_ms && std::abs(*fi.exposure_ms - 6.0) < 1e-9;
   EXPECT_EQ(with, 20);
-  auto [st3, scan] = run("scan openni:mode=qvga,frames=15 --out " + (g_env.root / "cli_scan").string());
+  auto [st3, scan] = run("scan openni:mode=qvga,frames=15 --out " + (g_env.root() / "cli_scan").string());
   EXPECT_EQ(st3, 0) << scan;
-  EXPECT_TRUE(fs::exists(g_env.root / "cli_scan" / "mesh.ply"));
+  EXPECT_TRUE(fs::exists(g_env.root() / "cli_scan" / "mesh.ply"));
 }
 
 }  // namespace

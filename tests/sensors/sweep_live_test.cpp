@@ -16,6 +16,7 @@
 #include "sensors/sweep_cameras.h"
 #include "sim/builtin_sensor.h"
 #include "support/test_support.h"
+#include "test_device_control.h"
 
 namespace {
 
@@ -23,31 +24,7 @@ namespace fs = std::filesystem;
 using namespace hdrf;
 
 // Set before OpenNI2 loads the driver (it reads them once).
-struct Environment {
-  fs::path root, control;
-  Environment() {
-    root = fs::temp_directory_path() / ("hdrf_sweep_live_" + std::to_string(getpid()));
-    fs::create_directories(root / "xdg");
-    control = root / "control";
-    std::ofstream(control) << "plugged still\n";
-    setenv("HDRF_TEST_DEVICE_CONTROL", control.c_str(), 1);
-    setenv("XDG_DATA_HOME", (root / "xdg").c_str(), 1);
-  }
-  ~Environment() {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-  }
-  // The scene as the driver's control file sets it; waits for its 10 ms poll.
-  void Set(const std::string& words) const {
-    std::ofstream(control) << words << "\n";
-    usleep(100000);
-  }
-};
-const Environment& Env() {
-  static Environment env;
-  return env;
-}
-const Environment& g_env = Env();
+const test::TestDeviceControl g_env("hdrf_sweep_live", "plugged still");
 
 constexpr const char* kSpec = "openni:mode=qvga,unit=0.1";
 

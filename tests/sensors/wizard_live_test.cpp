@@ -20,36 +20,15 @@
 #include "sensors/profiles.h"
 #include "sim/builtin_sensor.h"
 #include "support/test_support.h"
+#include "test_device_control.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace hdrf;
 
-struct Environment {
-  fs::path root, control;
-  Environment() {
-    root = fs::temp_directory_path() / ("hdrf_wizard_live_" + std::to_string(getpid()));
-    fs::create_directories(root / "xdg");
-    control = root / "control";
-    std::ofstream(control) << "plugged still\n";
-    setenv("HDRF_TEST_DEVICE_CONTROL", control.c_str(), 1);
-    setenv("XDG_DATA_HOME", (root / "xdg").c_str(), 1);
-  }
-  ~Environment() {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-  }
-  void Set(const std::string& words) const {
-    std::ofstream(control) << words << "\n";
-    usleep(100000);
-  }
-};
-const Environment& Env() {
-  static Environment env;
-  return env;
-}
-const Environment& g_env = Env();
+// Set before OpenNI2 loads the driver (it reads them once).
+const test::TestDeviceControl g_env("hdrf_wizard_live", "plugged still");
 
 int RunAutomatic(wizard::WizardSettings s) {
   s.automatic = true;
