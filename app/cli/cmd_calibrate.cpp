@@ -19,6 +19,7 @@
 #include "radiometry/calibration_job.h"
 #include "radiometry/pcf.h"
 #include "radiometry/validation.h"
+#include "sensors/profiles.h"
 
 namespace hdrf::cli {
 
@@ -70,6 +71,7 @@ void WritePlots(const fs::path& dir, const InverseResponse& inv, const PcfTables
 Command AddCalibrateCommand(CLI::App& app) {
   struct Args {
     std::string sweep, out, method = "debevec", basis, plots;
+    bool save_profile = false;
     int emor_components = EmorOptions{}.components;
     int threshold_passes = DebevecOptions{}.threshold_passes;
   };
@@ -87,6 +89,9 @@ Command AddCalibrateCommand(CLI::App& app) {
                   "Noise-aware refinement of the fitted curve on the level thresholds (0: the classic method)")
       ->check(CLI::Range(0, 10))->capture_default_str();
   cmd->add_option("--plots", a->plots, "Folder for response.png, derivative.png, pcf.png");
+  cmd->add_flag("--save-profile", a->save_profile,
+                "Also store the result as the profile of the sweep's camera (the serial in its sensor.json), "
+                "used whenever that camera is connected");
   return {cmd, [a] {
     // The output is checked before the sweep is read and fitted: a typo in --out must not
     // cost the whole fit.
@@ -164,6 +169,14 @@ Command AddCalibrateCommand(CLI::App& app) {
     const bool have_noise = run.noise_saved();
     io::WriteSensorJson(a->out, sensor);
     std::printf("\nwrote %s (response%s)\n", a->out.c_str(), have_noise ? " and noise" : " only");
+    if (a->save_profile) {
+      if (!sensor.device || sensor.device->serial.empty())
+        throw InputError(fs::path(a->sweep) / "sensor.json",
+                         "names no device serial (hdrfusion.device.serial), so the profile cannot be stored for a "
+                         "camera; " + a->out + " was written");
+      std::printf("stored as the profile of %s: %s\n", sensor.device->serial.c_str(),
+                  sensors::SaveProfile(sensor.device->serial, sensor).c_str());
+    }
     if (!a->plots.empty()) {
       WritePlots(a->plots, fit.inverse, run.pcf);
       std::printf("wrote %s/response.png (f^-1 against level, R red, G green, B blue), "

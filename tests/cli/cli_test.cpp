@@ -218,6 +218,55 @@ void ReverseExposures(const fs::path& sweep) {
 
 // The bad sweeps a new user makes end in a clear message, before the fit where they can,
 // and nothing is written.
+// The wizard's steps headless: a sweep captured from the synthetic sensor (exposures planned
+// from the scene), calibrated, and stored as the profile of its camera's serial; an
+// interrupted capture completed with --resume; what capture-sweep refuses.
+TEST(Cli, CaptureSweepCalibrateAndStoreTheProfile) {
+  test::TempDir dir;
+  const std::string env = "XDG_DATA_HOME=" + (dir / "xdg").string() + " ";
+  const std::string sweep = (dir / "sweep").string();
+  RunResult r = test::RunCommand(env + HDRF_CLI + std::string(" capture-sweep --source synthetic:response=gamma1.8,"
+                                                              "size=128x96 --repeats 4 --out ") + sweep);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("plan: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("captured "), std::string::npos) << r.output;
+  r = test::RunCommand(env + HDRF_CLI + " calibrate " + sweep + " --out " + (dir / "s.json").string() +
+                       " --save-profile");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path profile = dir / "xdg" / "hdrfusion" / "sensors" / "HDRF-SYNTHETIC.json";
+  ASSERT_TRUE(fs::exists(profile)) << r.output;
+  const SensorInfo s = io::ReadSensorJson(profile);
+  ASSERT_TRUE(s.response);
+  // gamma 1.8 scaled to f^-1(128) = 1: (255/128)^1.8 at the top.
+  EXPECT_NEAR(s.response->table[1][255], std::pow(255.0 / 128.0, 1.8), 0.02 * std::pow(255.0 / 128.0, 1.8));
+  // Refusals: a folder that is not empty, nothing to resume, a bad spec, bad settings.
+  r = RunCli("capture-sweep --source synthetic --out " + sweep);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("not empty"), std::string::npos) << r.output;
+  r = RunCli("capture-sweep --resume --out " + (dir / "none").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("nothing to resume"), std::string::npos) << r.output;
+  r = RunCli("capture-sweep --source synthetic:response=cubic --out " + (dir / "x").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("'cubic' is not a response"), std::string::npos) << r.output;
+  r = RunCli("capture-sweep --repeats 0 --out " + (dir / "x").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("repeats"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "x"));
+  // A capture record cut short (as if interrupted after 2 steps) is completed by --resume.
+  {
+    nlohmann::json rec = nlohmann::json::parse(test::ReadText(fs::path(sweep) / "capture.json"));
+    const int steps = int(rec["exposures_ms"].size());
+    rec["steps_done"] = 2;
+    test::WriteText(fs::path(sweep) / "capture.json", rec.dump());
+    r = RunCli("capture-sweep --resume --source synthetic:response=gamma1.8,size=128x96 --out " + sweep);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("2 of " + std::to_string(steps) + " steps were captured"), std::string::npos) << r.output;
+    const io::SequenceReader seq(sweep, io::SequenceReadOptions{.allow_missing_depth = true});
+    EXPECT_EQ(seq.size(), std::size_t(steps) * 4);
+  }
+}
+
 TEST(Cli, CalibrateRefusesBadSweepsBeforeWritingAnything) {
   test::TempDir dir;
   const fs::path out = dir / "s.json";
