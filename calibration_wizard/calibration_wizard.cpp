@@ -29,7 +29,10 @@ CalibrationWizard::CalibrationWizard(WizardSettings options, QWidget* parent)
 
 CalibrationWizard::~CalibrationWizard() {
   cancel_ = true;
-  if (worker_) worker_->wait();
+  if (worker_) {  // its finished signal will not be delivered now: wait and free it here
+    worker_->wait();
+    delete worker_;
+  }
 }
 
 bool CalibrationWizard::RunTask(std::function<void()> work, std::function<void(const QString&)> done) {

@@ -13,6 +13,8 @@
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QWizard>
+#include <QAction>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -60,6 +62,25 @@ TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
     EXPECT_TRUE(d->isFloating()) << k;
     d->setFloating(false);
   }
+}
+
+// Tools > Calibrate camera opens the wizard (once: a second trigger raises the same one).
+TEST(StudioWindow, ToolsMenuOpensTheCalibrationWizard) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  StudioOptions o;
+  o.source = "synthetic:frames=20,size=160x120";
+  MainWindow w(o);
+  w.show();
+  QAction* calibrate = w.findChild<QAction*>("action_calibrate");
+  ASSERT_NE(calibrate, nullptr);
+  calibrate->trigger();
+  calibrate->trigger();
+  const auto wizards = w.findChildren<QWizard*>("calibration_wizard");
+  ASSERT_EQ(wizards.size(), 1);
+  EXPECT_TRUE(wizards[0]->isVisible());
+  EXPECT_EQ(wizards[0]->currentId(), 0);
+  wizards[0]->reject();
 }
 
 TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
