@@ -23,6 +23,7 @@
 #include "calibration_wizard/plot_widget.h"
 #include "eval/response_error.h"
 #include "io/sensor_json.h"
+#include "io/sequence.h"
 #include "io/sweep_capture.h"
 #include "response_curves.h"
 #include "sensors/profiles.h"
@@ -159,6 +160,43 @@ TEST(Wizard, AutomaticStopsWithTheReasonOnABadSource) {
 void DocsShot(QWidget& w, const char* name) {
   const char* dir = std::getenv("HDRF_DOCS_SHOTS");
   if (dir && *dir) w.grab().save(QString("%1/%2.png").arg(dir, name));
+}
+
+// A recorded sweep of 2 exposures (1 and 2 ms) stops at Fit, saying why, before anything is
+// written.
+TEST(Wizard, TwoExposureSweepStopsAtFitWithTheReason) {
+  ProfileHome home;
+  test::TempDir tmp;
+  {
+    sim::SyntheticSweepOptions o;
+    o.width = 96;
+    o.height = 72;
+    sim::SyntheticSweepCamera cam(o);
+    cam.SetAutomatic(false, false);
+    io::SequenceWriter::Options wo;
+    wo.write_groundtruth = false;
+    wo.write_depth = false;
+    io::SequenceWriter w(tmp / "two", cam.sensor(), wo);
+    int k = 0;
+    for (double t : {1.0, 2.0})
+      for (int r = 0; r < 3; ++r) {
+        cam.SetExposure(t);
+        w.Add(0.1 * ++k, cam.Grab(), nullptr, t, std::nullopt, nullptr);
+      }
+  }
+  WizardSettings s;
+  s.source = QString::fromStdString((tmp / "two").string());
+  s.automatic = true;
+  CalibrationWizard w(s);
+  QString reason;
+  QObject::connect(&w, &CalibrationWizard::failed, [&](const QString& m) { reason = m; });
+  bool finished = false;
+  QObject::connect(&w, &QDialog::finished, [&] { finished = true; });
+  w.show();
+  ASSERT_TRUE(WaitFor([&] { return finished; }));
+  EXPECT_EQ(w.exit_code(), 1);
+  EXPECT_TRUE(reason.contains("at least 3")) << reason.toStdString();
+  EXPECT_FALSE(fs::exists(sensors::ProfileFolder()));
 }
 
 template <class T>
