@@ -68,6 +68,17 @@ QString CoverageText(const radiometry::LevelCoverage& c) {
       .arg(int(100 * c.share[2] + 0.5));
 }
 
+// A capture in `folder` that stopped before its last step (Resume can complete it).
+bool UnfinishedCapture(const fs::path& folder) {
+  try {
+    if (folder.empty() || !fs::exists(folder / "capture.json")) return false;
+    const io::CaptureRecord r = io::ReadCaptureRecord(folder);
+    return r.steps_done < int(r.plan.exposures_ms.size());
+  } catch (const std::exception&) {
+    return false;  // not a record this tool can resume: Start says what is wrong with the folder
+  }
+}
+
 QString HomePath(const QString& sub) { return QDir::home().filePath("HDRFusion/" + sub); }
 
 // The colour frame with clipped pixels shown red (any channel >= 250) and black ones blue
@@ -570,7 +581,13 @@ CapturePage::CapturePage(CalibrationWizard* w) : w_(w) {
 void CapturePage::initializePage() {
   complete_ = false;
   QString f = w_->settings().sweep_folder;
-  if (f.isEmpty() && folder_->text().isEmpty())
+  // A fresh folder by default; one that already holds a finished sweep (the operator came
+  // back to capture again) gets a new name rather than a refusal.
+  const fs::path shown = folder_->text().toStdString();
+  std::error_code ec;
+  const bool used = !shown.empty() && fs::exists(shown) && !fs::is_empty(shown, ec) &&
+                    !UnfinishedCapture(shown);
+  if (f.isEmpty() && (folder_->text().isEmpty() || used))
     f = HomePath("sweeps/sweep-" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss"));
   if (!f.isEmpty()) folder_->setText(f);
   ShowProblem(problem_, "");
@@ -589,15 +606,7 @@ void CapturePage::initializePage() {
 }
 
 void CapturePage::UpdateButtons() {
-  const fs::path folder = folder_->text().toStdString();
-  bool resumable = false;
-  try {
-    if (!folder.empty() && fs::exists(folder / "capture.json")) {
-      const io::CaptureRecord r = io::ReadCaptureRecord(folder);
-      resumable = r.steps_done < int(r.plan.exposures_ms.size());
-    }
-  } catch (const std::exception&) {
-  }
+  const bool resumable = UnfinishedCapture(folder_->text().toStdString());
   start_->setEnabled(!running_ && !complete_);
   resume_->setEnabled(!running_ && !complete_ && resumable);
   cancel_->setEnabled(running_);
