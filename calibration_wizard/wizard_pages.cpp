@@ -434,7 +434,7 @@ void SetupPage::Preview() {
       cam->SetExposure(preview_ms_->value());
       previewed_ms_ = preview_ms_->value();
     }
-    const ColorImage im = cam->Grab();
+    const ColorImage im = cam->GrabLatest();
     double high = 0, low = 0;
     const QImage q = Highlighted(im, &high, &low);
     preview_->setPixmap(QPixmap::fromImage(q.scaled(preview_->size(), Qt::KeepAspectRatio, Qt::SmoothTransformation)));

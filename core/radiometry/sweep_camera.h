@@ -43,6 +43,8 @@ class SweepCamera {
   virtual double SetExposure(double ms) = 0;
   // The next frame (throws hdrf::Error when the camera stops delivering).
   virtual ColorImage Grab() = 0;
+  // A frame taken now, not one waiting in a queue (a live preview).
+  virtual ColorImage GrabLatest() { return Grab(); }
 };
 
 }  // namespace hdrf::radiometry

@@ -83,6 +83,11 @@ ColorImage LiveSweepCamera::Grab() {
   return std::move(f->color);
 }
 
+ColorImage LiveSweepCamera::GrabLatest() {
+  camera_->Flush();
+  return Grab();
+}
+
 namespace {
 
 // "key=value,key=value" after the spec's "name:".

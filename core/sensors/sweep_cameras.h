@@ -31,6 +31,7 @@ class LiveSweepCamera : public radiometry::SweepCamera {
   radiometry::ColourLock colour_lock() const override;
   double SetExposure(double ms) override;
   ColorImage Grab() override;
+  ColorImage GrabLatest() override;  // drops the queued frames first
 
   // False when exposures are in the device's raw unit (no unit known).
   bool exposure_in_ms() const { return unit_known_; }
