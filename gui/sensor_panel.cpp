@@ -167,7 +167,7 @@ void SensorPanel::ShowProfileNote(int i) {
     profile_->setStyleSheet({});
   } else {
     profile_->setText(tr("Not calibrated: the built-in Xtion profile is used; its response is not this "
-                         "camera's own (calibrate it for true radiance)"));
+                         "camera's own (Tools → Calibrate camera… for true radiance)"));
     profile_->setStyleSheet(kWarnStyle);
   }
 }

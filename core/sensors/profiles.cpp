@@ -38,7 +38,8 @@ Profile ProfileFor(const DeviceEntry& device, CaptureMode mode) {
     p.sensor.warnings.push_back(
         "no profile for device '" + device.name + "'" + (device.serial.empty() ? "" : " (serial " + device.serial + ")") +
         " in " + ProfileFolder().string() + ": using the built-in Asus Xtion profile. Its response and "
-        "intrinsics are not this device's own; calibrate it (hdrfusion calibrate, then save the result as " +
+        "intrinsics are not this device's own; calibrate it with hdrfusion-calibration-wizard (or "
+        "hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores " +
         (file.empty() ? ProfileFolder().string() + "/<serial>.json" : file.string()) + ")");
   }
   // Scale the camera to the capture mode (the same sensor binned or cropped to another size
