@@ -48,7 +48,6 @@ class SyntheticSweepCamera : public radiometry::SweepCamera {
   const SyntheticSweepOptions& options() const { return o_; }
   // The truth, as a calibration of this camera should find it (f^-1(128) = 1).
   const radiometry::InverseResponse& true_response() const { return o_.response; }
-  int grabs() const { return grabs_; }
   // The camera knocked aside: from the next grab on the view is shifted by `px` pixels.
   void KnockAside(int px);
 
