@@ -81,8 +81,8 @@ bool UnfinishedCapture(const fs::path& folder) {
 
 QString HomePath(const QString& sub) { return QDir::home().filePath("HDRFusion/" + sub); }
 
-// The colour frame with clipped pixels shown red (any channel >= 250) and black ones blue
-// (all channels <= 5), for the Set-up page's preview.
+// The colour frame with saturated pixels shown red and black ones blue (io::IsSaturated,
+// io::IsBlack: what the plan meters), for the Set-up page's preview.
 QImage Highlighted(const ColorImage& im, double* high, double* low) {
   QImage q(im.width(), im.height(), QImage::Format_RGB888);
   long h = 0, l = 0;
@@ -90,11 +90,10 @@ QImage Highlighted(const ColorImage& im, double* high, double* low) {
     uchar* row = q.scanLine(y);
     for (int x = 0; x < im.width(); ++x) {
       const Rgb8 v = im(x, y);
-      const int mx = std::max({v.r, v.g, v.b});
       uchar* o = row + 3 * x;
-      if (mx >= 250) {
+      if (io::IsSaturated(v)) {
         o[0] = 255, o[1] = 0, o[2] = 0, ++h;
-      } else if (mx <= 5) {
+      } else if (io::IsBlack(v)) {
         o[0] = 0, o[1] = 80, o[2] = 255, ++l;
       } else {
         o[0] = v.r, o[1] = v.g, o[2] = v.b;
@@ -227,7 +226,22 @@ void SourcePage::initializePage() {
   preset_done_ = true;
   const QString s = w_->settings().source;
   if (s.startsWith("openni:")) {
+    // Shown in the page's fields, so that what the operator changes there counts; settings
+    // the page has no field for (gain) are kept as given.
     live_->setChecked(true);
+    for (const QString& kv : s.mid(7).split(',', Qt::SkipEmptyParts)) {
+      const QString k = kv.section('=', 0, 0), val = kv.section('=', 1);
+      if (k == "device") {
+        if (devices_->findData(val) < 0) devices_->addItem(val, val);
+        devices_->setCurrentIndex(devices_->findData(val));
+      } else if (k == "mode" && mode_->findData(val) >= 0) {
+        mode_->setCurrentIndex(mode_->findData(val));
+      } else if (k == "unit") {
+        unit_->setValue(val.toDouble());
+      } else {
+        live_extra_ += "," + kv;
+      }
+    }
   } else if (s.startsWith("synthetic")) {
     synthetic_->setChecked(true);
     for (const QString& kv : s.mid(s.indexOf(':') + 1).split(',', Qt::SkipEmptyParts)) {
@@ -258,12 +272,10 @@ void SourcePage::initializePage() {
 
 QString SourcePage::Spec() const {
   if (live_->isChecked()) {
-    const QString opts = w_->settings().source.startsWith("openni:") ? w_->settings().source.mid(7) : QString();
-    if (!opts.isEmpty()) return "openni:" + opts;  // given in full (automation)
     QString spec = "openni:mode=" + mode_->currentData().toString();
     if (!devices_->currentData().toString().isEmpty()) spec += ",device=" + devices_->currentData().toString();
     if (unit_->value() > 0) spec += ",unit=" + QString::number(unit_->value(), 'g', 6);
-    return spec;
+    return spec + live_extra_;
   }
   if (folder_->isChecked()) return folder_edit_->text().trimmed();
   QString r = response_->currentData().toString();
@@ -288,7 +300,7 @@ bool SourcePage::validatePage() {
       st.sweep_sensor.response.reset();
       st.sweep_sensor.noise.reset();
     } else {
-      if (live_->isChecked() && devices_->currentData().toString().isEmpty() && !spec.contains("device="))
+      if (live_->isChecked() && devices_->currentData().toString().isEmpty())
         throw Error(tr("No camera is connected: plug one in and press Refresh, or choose the synthetic sensor.")
                         .toStdString());
       st.camera = sensors::OpenSweepCamera(spec.toStdString());

@@ -38,6 +38,7 @@ class SourcePage : public QWizardPage {
   QDoubleSpinBox* unit_;
   QLineEdit *folder_edit_, *response_file_;
   QLabel* error_;
+  QString live_extra_;  // ",key=value" settings of a preset live source with no field here
   bool preset_done_ = false;
 };
 

@@ -3,11 +3,11 @@
 // exposures planned from the scene, steps checked for motion and flicker, written as they
 // come; Ctrl-C keeps what was captured and --resume completes it.
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/interrupt.h"
 #include "common/error.h"
 #include "io/sweep_capture.h"
 #include "sensors/sweep_cameras.h"
@@ -15,11 +15,6 @@
 namespace hdrf::cli {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::atomic<bool> g_cancel{false};
-extern "C" void OnCaptureInterrupt(int) { g_cancel = true; }
-}  // namespace
 
 Command AddCaptureSweepCommand(CLI::App& app) {
   struct Args {
@@ -58,12 +53,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
     auto camera = sensors::OpenSweepCamera(a->source);
     std::printf("camera: %s\n", camera->description().c_str());
     if (!a->keep_auto) camera->SetAutomatic(false, false);
-    g_cancel = false;
-    auto previous = std::signal(SIGINT, OnCaptureInterrupt);
-    struct Restore {
-      decltype(previous) p;
-      ~Restore() { std::signal(SIGINT, p); }
-    } restore{previous};
+    StopOnInterrupt interrupt;  // Ctrl-C: cancel between frames, keeping the complete steps
     auto show = [](const io::CaptureStatus& s) {
       if (!s.note.empty()) std::fprintf(stderr, "  %s\n", s.note.c_str());
       if (s.stage == "capture")
@@ -77,7 +67,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
       std::printf("resuming %s: %d of %zu steps were captured\n", out.c_str(), r.steps_done,
                   r.plan.exposures_ms.size());
     } else {
-      const io::SweepPlan plan = io::PlanSweep(*camera, a->plan, {}, &g_cancel);
+      const io::SweepPlan plan = io::PlanSweep(*camera, a->plan, {}, &interrupt.flag());
       std::printf("plan: %zu exposures from %.4g to %.4g ms, %d frames each\n", plan.exposures_ms.size(),
                   plan.exposures_ms.front(), plan.exposures_ms.back(), plan.options.repeats);
       std::printf("levels covered by the preview: R %.0f %%, G %.0f %%, B %.0f %%\n", 100 * plan.coverage.share[0],
@@ -85,7 +75,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
       for (const std::string& w : plan.warnings) std::printf("warning: %s\n", w.c_str());
       capture.emplace(*camera, plan, out);
     }
-    const io::CaptureResult r = capture->Run(show, &g_cancel);
+    const io::CaptureResult r = capture->Run(show, &interrupt.flag());
     if (r.cancelled) {
       std::printf("cancelled: %d of %d steps (%d frames) kept in %s; complete it with --resume\n", r.steps_done,
                   r.steps, r.frames, out.c_str());

@@ -2,12 +2,12 @@
 // hdrfusion record: a live device to a sequence folder (lossless) or an .oni file.
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "sensors/live_source.h"
 #include "sensors/profiles.h"
@@ -16,11 +16,6 @@
 namespace hdrf::cli {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::atomic<bool> g_stop{false};
-extern "C" void OnInterrupt(int) { g_stop = true; }
-}  // namespace
 
 Command AddSensorsCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("sensors", "List the connected OpenNI2 cameras, their serials and profiles");
@@ -101,8 +96,8 @@ Command AddRecordCommand(CLI::App& app) {
       rec = std::make_unique<sensors::OniRecording>(out, live.camera(), live.sensor());
     else
       seq = std::make_unique<sensors::SequenceRecorder>(out, live.sensor());
-    g_stop = false;
-    auto previous = std::signal(SIGINT, OnInterrupt);
+    std::optional<StopOnInterrupt> interrupt;
+    interrupt.emplace();
     const auto t0 = std::chrono::steady_clock::now();
     const int total = a->frames > 0 ? a->frames : int(a->seconds * o.mode.fps + 0.5);
     Progress progress("record", total);
@@ -110,7 +105,7 @@ Command AddRecordCommand(CLI::App& app) {
     long taken = 0;
     const long dropped_before = live.camera().dropped();
     try {
-      while (!g_stop && taken < total) {
+      while (!interrupt->raised() && taken < total) {
         if (a->seconds > 0 &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= a->seconds)
           break;
@@ -129,7 +124,7 @@ Command AddRecordCommand(CLI::App& app) {
     } catch (const std::exception& e) {
       failure = e.what();
     }
-    std::signal(SIGINT, previous);
+    interrupt.reset();
     progress.Done();
     const long device_dropped = live.camera().dropped() - dropped_before;
     if (seq) {

@@ -116,6 +116,14 @@ RadianceImage SequenceReader::ReadHdr(std::size_t i) const {
   return img;
 }
 
+namespace {
+// The lists' headers, as written and as rewritten by Reopen.
+constexpr const char* kRgbHeader = "# colour images\n# timestamp filename\n";
+constexpr const char* kDepthHeader = "# depth images\n# timestamp filename\n";
+constexpr const char* kExposureHeader = "# timestamp exposure_ms [analog_gain]\n";
+constexpr const char* kGroundTruthHeader = "# timestamp tx ty tz qx qy qz qw (camera-to-world, metres)\n";
+}  // namespace
+
 SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor, Options options)
     : folder_(folder), sensor_(sensor), options_(options) {
   if (fs::exists(folder) && !(fs::is_directory(folder) && fs::is_empty(folder)))
@@ -131,12 +139,10 @@ SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor,
     if (!s) throw InputError(folder / name, "cannot be opened for writing");
     s << header;
   };
-  open(rgb_, "rgb.txt", "# colour images\n# timestamp filename\n");
-  if (options.write_depth) open(depth_, "depth.txt", "# depth images\n# timestamp filename\n");
-  if (options.write_exposure)
-    open(exposure_, "exposure.txt", "# timestamp exposure_ms [analog_gain]\n");
-  if (options.write_groundtruth)
-    open(gt_, "groundtruth.txt", "# timestamp tx ty tz qx qy qz qw (camera-to-world, metres)\n");
+  open(rgb_, "rgb.txt", kRgbHeader);
+  if (options.write_depth) open(depth_, "depth.txt", kDepthHeader);
+  if (options.write_exposure) open(exposure_, "exposure.txt", kExposureHeader);
+  if (options.write_groundtruth) open(gt_, "groundtruth.txt", kGroundTruthHeader);
 }
 
 SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor, Options options, bool)
@@ -145,46 +151,29 @@ SequenceWriter::SequenceWriter(const fs::path& folder, const SensorInfo& sensor,
 SequenceWriter SequenceWriter::Reopen(const fs::path& folder, Options options, std::size_t keep_frames) {
   SequenceWriter w(folder, ReadSensorJson(folder / "sensor.json"), options, true);
   // The timestamp of the last colour frame kept; every list is cut after it.
-  std::vector<std::string> rgb_lines;
-  {
-    std::ifstream in(folder / "rgb.txt");
-    if (!in) throw InputError(folder / "rgb.txt", "cannot be read");
-    for (std::string line; std::getline(in, line);) rgb_lines.push_back(line);
-  }
-  double last = -1;
-  std::size_t kept = 0;
-  for (const std::string& line : rgb_lines) {
-    if (line.empty() || line[0] == '#') continue;
-    if (kept == keep_frames) break;
-    last = std::stod(line);
-    ++kept;
-  }
-  if (kept < keep_frames)
-    throw InputError(folder / "rgb.txt", "lists " + std::to_string(kept) + " frames, fewer than the " +
-                                             std::to_string(keep_frames) + " recorded as complete");
-  auto cut = [&](std::ofstream& s, const char* name) {
+  const fs::path rgb = folder / "rgb.txt";
+  const std::vector<TextRow> frames = ReadTextTable(rgb);
+  if (frames.size() < keep_frames)
+    throw InputError(rgb, "lists " + std::to_string(frames.size()) + " frames, fewer than the " +
+                              std::to_string(keep_frames) + " recorded as complete");
+  const double last = keep_frames > 0 ? ParseNumber(rgb, frames[keep_frames - 1], 0, "timestamp") : -1;
+  auto cut = [&](std::ofstream& s, const char* name, const char* header) {
     const fs::path file = folder / name;
-    std::vector<std::string> lines;
-    {
-      std::ifstream in(file);
-      for (std::string line; std::getline(in, line);)
-        if (line.empty() || line[0] == '#' || (kept > 0 && std::stod(line) <= last)) lines.push_back(line);
+    std::string content = header;
+    for (const TextRow& row : ReadTextTable(file)) {
+      if (keep_frames == 0 || ParseNumber(file, row, 0, "timestamp") > last) continue;
+      for (std::size_t f = 0; f < row.fields.size(); ++f) content += (f ? " " : "") + row.fields[f];
+      content += "\n";
     }
-    const fs::path tmp = file.string() + ".tmp";
-    {
-      std::ofstream out(tmp);
-      for (const std::string& line : lines) out << line << "\n";
-      if (!out) throw InputError(tmp, "write failed (disk full?)");
-    }
-    fs::rename(tmp, file);
+    WriteFileAtomically(file, content);
     s.open(file, std::ios::app);
     if (!s) throw InputError(file, "cannot be opened for writing");
   };
-  cut(w.rgb_, "rgb.txt");
-  if (options.write_depth) cut(w.depth_, "depth.txt");
-  if (options.write_exposure) cut(w.exposure_, "exposure.txt");
-  if (options.write_groundtruth) cut(w.gt_, "groundtruth.txt");
-  w.count_ = kept;
+  cut(w.rgb_, "rgb.txt", kRgbHeader);
+  if (options.write_depth) cut(w.depth_, "depth.txt", kDepthHeader);
+  if (options.write_exposure) cut(w.exposure_, "exposure.txt", kExposureHeader);
+  if (options.write_groundtruth) cut(w.gt_, "groundtruth.txt", kGroundTruthHeader);
+  w.count_ = keep_frames;
   w.last_timestamp_ = last;
   return w;
 }

@@ -13,18 +13,25 @@ void ParseSize(const std::string& s, int* w, int* h) {
     throw SettingError("--size", "expected WIDTHxHEIGHT such as 320x240, got '" + s + "'");
 }
 
+std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (from >= spec.size()) return out;
+  std::stringstream ss(spec.substr(from));
+  std::string kv;
+  while (std::getline(ss, kv, ',')) {
+    if (kv.empty()) continue;
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos) throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value");
+    out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+  }
+  return out;
+}
+
 std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const std::string& response) {
   const std::string prefix = "synthetic:";
   if (spec.rfind(prefix, 0) == 0) {
     sim::SimOptions o;
-    std::stringstream ss(spec.substr(prefix.size()));
-    std::string kv;
-    while (std::getline(ss, kv, ',')) {
-      if (kv.empty()) continue;
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos)
-        throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value");
-      const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+    for (const auto& [k, v] : SplitSpec(spec, prefix.size())) {
       try {
         if (k == "scene") o.scene = v;
         else if (k == "seed") o.seed = std::uint32_t(std::stoul(v));
@@ -35,7 +42,7 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
         else throw SettingError("SOURCE", "unknown synthetic setting '" + k +
                                               "' (scene, seed, frames, ae, exposure, size)");
       } catch (const std::logic_error&) {
-        throw SettingError("SOURCE", "cannot parse '" + kv + "' in '" + spec + "'");
+        throw SettingError("SOURCE", "cannot parse '" + k + "=" + v + "' in '" + spec + "'");
       }
     }
     return std::make_unique<pipeline::SyntheticFrameSource>(o);

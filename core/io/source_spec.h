@@ -6,6 +6,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pipeline/frame_source.h"
 
@@ -13,6 +15,11 @@ namespace hdrf::io {
 
 // `response` is "" or "srgb" (the fallback for sequences without a calibrated response).
 std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const std::string& response);
+
+// The "key=value,key=value" settings after a spec's "name:" (`from`: where they start);
+// empty items are skipped. Throws SettingError naming SOURCE and the item that is not
+// key=value. Used by every spec: synthetic:, openni:, and the sweep cameras.
+std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from);
 
 // "WIDTHxHEIGHT" (throws SettingError naming --size).
 void ParseSize(const std::string& s, int* w, int* h);

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "io/json_file.h"
+#include "io/image_io.h"
 #include "io/sequence.h"
-#include "io/sweep.h"
+#include "io/text_table.h"
 
 namespace hdrf::io {
 
@@ -40,7 +40,7 @@ double Expose(SweepCamera& camera, double ms, int settle) {
 }
 
 struct FrameStats {
-  double high = 0, low = 0;  // shares of pixels with a channel >= 250, all channels <= 5
+  double high = 0, low = 0;  // shares of pixels saturated and black (IsSaturated, IsBlack)
   double dim = 0;            // share with all channels <= 20
   double mean_green = 0;
 };
@@ -50,8 +50,8 @@ FrameStats Stats(const ColorImage& im) {
   double sum = 0;
   for (std::size_t p = 0; p < im.size(); ++p) {
     const Rgb8 v = im[p];
-    high += std::max({v.r, v.g, v.b}) >= 250;
-    low += std::max({v.r, v.g, v.b}) <= 5;
+    high += IsSaturated(v);
+    low += IsBlack(v);
     dim += std::max({v.r, v.g, v.b}) <= 20;
     sum += v.g;
   }
@@ -102,14 +102,9 @@ nlohmann::json ToJson(const CaptureRecord& r) {
           {"recaptures", r.recaptures}};
 }
 
+// Atomically: a crash leaves the old record or the new one.
 void WriteRecord(const fs::path& folder, const CaptureRecord& r) {
-  const fs::path file = folder / "capture.json", tmp = folder / "capture.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << ToJson(r).dump(2) << "\n";
-    if (!out) throw InputError(tmp, "write failed (disk full?)");
-  }
-  fs::rename(tmp, file);  // atomic: a crash leaves the old record or the new one
+  WriteFileAtomically(folder / "capture.json", ToJson(r).dump(2) + "\n");
 }
 
 }  // namespace
@@ -371,9 +366,10 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
   status.recaptures = record_.recaptures;
   // The step before, for the motion check across exposures: on resume, the last frame written.
   std::optional<ColorImage> previous;
-  if (record_.steps_done > 0) {
-    const radiometry::Sweep done = ReadSweep(folder_);
-    if (!done.images.empty()) previous = done.images[std::size_t(record_.steps_done) * std::size_t(o.repeats) - 1].Clone();
+  if (writer->size() > 0) {  // (Reopen has cut the lists to the complete steps)
+    SequenceReadOptions ro;
+    ro.allow_missing_depth = true;
+    previous = ReadColorImage(SequenceReader(folder_, ro).frames()[writer->size() - 1].color_path);
   }
   std::optional<ColorImage> reference;
   double reference_midtones = -1;

@@ -30,6 +30,11 @@ class CaptureProblem : public Error {
   FixAt at_;
 };
 
+// What the plan meters and the wizard's preview highlights: a pixel is saturated when any
+// channel reaches 250, black when every channel is 5 or below.
+inline bool IsSaturated(const Rgb8& v) { return v.r >= 250 || v.g >= 250 || v.b >= 250; }
+inline bool IsBlack(const Rgb8& v) { return v.r <= 5 && v.g <= 5 && v.b <= 5; }
+
 struct SweepPlanOptions {
   double step_stops = 0.5;  // between exposures (half a stop: steep knees recovered)
   int repeats = 5;          // frames per exposure (the noise fit needs 3 or more)

@@ -51,13 +51,7 @@ bool IsLiveSpec(const std::string& spec) { return spec.rfind("openni:", 0) == 0;
 LiveOptions ParseLiveSpec(const std::string& spec) {
   if (!IsLiveSpec(spec)) throw SettingError("SOURCE", "'" + spec + "' is not a live source (openni:...)");
   LiveOptions o;
-  std::stringstream ss(spec.substr(7));
-  std::string kv;
-  while (std::getline(ss, kv, ',')) {
-    if (kv.empty()) continue;
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos) throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value");
-    const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+  for (const auto& [k, v] : io::SplitSpec(spec, 7)) {
     try {
       std::size_t used = 0;
       auto number = [&](auto parse) {
@@ -77,7 +71,7 @@ LiveOptions ParseLiveSpec(const std::string& spec) {
         throw SettingError("SOURCE", "unknown live setting '" + k +
                                          "' (device, mode, ae, awb, exposure, exposure_raw, gain, frames)");
     } catch (const std::logic_error&) {
-      throw SettingError("SOURCE", "cannot parse '" + kv + "' in '" + spec + "'");
+      throw SettingError("SOURCE", "cannot parse '" + k + "=" + v + "' in '" + spec + "'");
     }
   }
   if (o.exposure_ms && !(*o.exposure_ms > 0)) throw SettingError("exposure", "must be positive milliseconds");

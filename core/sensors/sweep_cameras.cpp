@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "common/error.h"
 #include "io/sensor_json.h"
+#include "io/source_spec.h"
 #include "radiometry/calibration.h"
 #include "sim/sweep_camera.h"
 
@@ -90,21 +90,6 @@ ColorImage LiveSweepCamera::GrabLatest() {
 
 namespace {
 
-// "key=value,key=value" after the spec's "name:".
-std::vector<std::pair<std::string, std::string>> KeyValues(const std::string& spec, std::size_t from) {
-  std::vector<std::pair<std::string, std::string>> kv;
-  if (from >= spec.size()) return kv;
-  std::stringstream ss(spec.substr(from));
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) continue;
-    const auto eq = item.find('=');
-    if (eq == std::string::npos) throw SettingError("source", "'" + item + "' in '" + spec + "' is not key=value");
-    kv.emplace_back(item.substr(0, eq), item.substr(eq + 1));
-  }
-  return kv;
-}
-
 double Number(const std::string& key, const std::string& v) {
   std::size_t used = 0;
   double d = 0;
@@ -122,7 +107,7 @@ double Number(const std::string& key, const std::string& v) {
 std::unique_ptr<radiometry::SweepCamera> OpenSweepCamera(const std::string& spec) {
   if (spec == "synthetic" || spec.rfind("synthetic:", 0) == 0) {
     sim::SyntheticSweepOptions o;
-    for (const auto& [k, v] : KeyValues(spec, 10)) {
+    for (const auto& [k, v] : io::SplitSpec(spec, 10)) {
       if (k == "response") {
         if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {
           const SensorInfo s = io::ReadSensorJson(v);
@@ -145,10 +130,7 @@ std::unique_ptr<radiometry::SweepCamera> OpenSweepCamera(const std::string& spec
       } else if (k == "scene") {
         o.scene = v;
       } else if (k == "size") {
-        const auto x = v.find('x');
-        if (x == std::string::npos) throw SettingError("size", "'" + v + "' is not WxH");
-        o.width = int(Number("size", v.substr(0, x)));
-        o.height = int(Number("size", v.substr(x + 1)));
+        io::ParseSize(v, &o.width, &o.height);
       } else if (k == "seed") {
         o.seed = std::uint32_t(Number("seed", v));
       } else {
@@ -160,7 +142,7 @@ std::unique_ptr<radiometry::SweepCamera> OpenSweepCamera(const std::string& spec
   if (IsLiveSpec(spec)) {
     std::optional<double> unit;
     std::string rest = "openni:";
-    for (const auto& [k, v] : KeyValues(spec, 7)) {
+    for (const auto& [k, v] : io::SplitSpec(spec, 7)) {
       if (k == "unit") unit = Number("unit", v);
       else if (k == "device" || k == "mode" || k == "gain") rest += k + "=" + v + ",";
       else throw SettingError("source", "unknown setting '" + k + "' for a sweep camera (device, mode, unit, gain)");

@@ -21,6 +21,7 @@
 #include "sim/builtin_sensor.h"
 #include "support/test_support.h"
 #include "test_device_control.h"
+#include "wizard/automatic_run.h"
 
 namespace {
 
@@ -29,19 +30,6 @@ using namespace hdrf;
 
 // Set before OpenNI2 loads the driver (it reads them once).
 const test::TestDeviceControl g_env("hdrf_wizard_live", "plugged still");
-
-int RunAutomatic(wizard::WizardSettings s) {
-  s.automatic = true;
-  wizard::CalibrationWizard w(s);
-  bool finished = false;
-  QObject::connect(&w, &QDialog::finished, [&] { finished = true; });
-  w.show();
-  QElapsedTimer t;
-  t.start();
-  while (!finished && t.elapsed() < 180000) QTest::qWait(20);
-  EXPECT_TRUE(finished);
-  return w.exit_code();
-}
 
 TEST(WizardLive, CalibratesTheDeviceAndStoresItsProfile) {
   g_env.Set("plugged still");
@@ -54,7 +42,8 @@ TEST(WizardLive, CalibratesTheDeviceAndStoresItsProfile) {
   s.report_folder = QString::fromStdString((tmp / "report").string());
   s.plan.step_stops = 1;
   s.plan.repeats = 3;
-  ASSERT_EQ(RunAutomatic(s), 0);
+  const test::AutomaticRun run = test::RunWizardAutomatic(s);
+  ASSERT_EQ(run.exit_code, 0) << run.reason.toStdString();
   // The live sources take the device's own profile from now on.
   const sensors::Profile p = sensors::ProfileFor(device, sensors::ParseCaptureMode("qvga"));
   EXPECT_TRUE(p.own);

@@ -30,6 +30,7 @@
 #include "sim/sweep_camera.h"
 #include "sim/sweep_simulator.h"
 #include "support/test_support.h"
+#include "wizard/automatic_run.h"
 
 namespace hdrf::wizard {
 namespace {
@@ -47,17 +48,6 @@ bool WaitFor(const std::function<bool()>& done, int ms = 60000) {
   t.start();
   while (!done() && t.elapsed() < ms) QTest::qWait(20);
   return done();
-}
-
-// Runs the wizard under its automation switch; returns its exit code.
-int RunAutomatic(WizardSettings s) {
-  s.automatic = true;
-  CalibrationWizard w(s);
-  bool finished = false;
-  QObject::connect(&w, &QDialog::finished, [&] { finished = true; });
-  w.show();
-  EXPECT_TRUE(WaitFor([&] { return finished; }, 120000)) << "the automatic run did not finish";
-  return w.exit_code();
 }
 
 // Share of pixels that are not white: a plot with curves drawn, not an empty frame.
@@ -95,7 +85,8 @@ TEST(Wizard, AutomaticOnTheSyntheticSensorSavesItsTrueResponse) {
   s.sweep_folder = QString::fromStdString((tmp / "sweep").string());
   s.report_folder = QString::fromStdString((tmp / "report").string());
   s.plan.repeats = 6;
-  ASSERT_EQ(RunAutomatic(s), 0);
+  const test::AutomaticRun run = test::RunWizardAutomatic(s);
+  ASSERT_EQ(run.exit_code, 0) << run.reason.toStdString();
   radiometry::InverseResponse truth = sim::NamedResponse("gamma2.2");
   ExpectProfileMatches("HDRF-SYNTHETIC", truth, sim::kSweepNoise, "gamma 2.2");
   for (const char* f : {"response.png", "derivative.png", "noise.png", "pcf.png", "residuals.png", "consistency.png"})
@@ -124,7 +115,8 @@ TEST(Wizard, AutomaticRecoversAMeasuredCurveItWasNotTold) {
   s.sweep_folder = QString::fromStdString((tmp / "sweep").string());
   s.report_folder = QString::fromStdString((tmp / "report").string());
   s.plan.repeats = 6;
-  ASSERT_EQ(RunAutomatic(s), 0);
+  const test::AutomaticRun run = test::RunWizardAutomatic(s);
+  ASSERT_EQ(run.exit_code, 0) << run.reason.toStdString();
   ExpectProfileMatches("HDRF-SYNTHETIC", *truth_file.response, sim::kSweepNoise, "DoRF 12/146/159");
 }
 
@@ -142,7 +134,8 @@ TEST(Wizard, AutomaticFromARecordedSweepFolder) {
   WizardSettings s;
   s.source = QString::fromStdString((tmp / "recorded").string());
   s.report_folder = QString::fromStdString((tmp / "report").string());
-  ASSERT_EQ(RunAutomatic(s), 0);
+  const test::AutomaticRun run = test::RunWizardAutomatic(s);
+  ASSERT_EQ(run.exit_code, 0) << run.reason.toStdString();
   ExpectProfileMatches("HDRF-SYNTHETIC", cam.true_response(), sim::kSweepNoise, "recorded folder");
 }
 
@@ -150,9 +143,13 @@ TEST(Wizard, AutomaticStopsWithTheReasonOnABadSource) {
   ProfileHome home;
   WizardSettings s;
   s.source = "/nonexistent/sweep";
-  EXPECT_EQ(RunAutomatic(s), 1);
+  test::AutomaticRun run = test::RunWizardAutomatic(s);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_TRUE(run.reason.contains("/nonexistent/sweep")) << run.reason.toStdString();
   s.source = "synthetic:response=gamma9";
-  EXPECT_EQ(RunAutomatic(s), 1);
+  run = test::RunWizardAutomatic(s);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_TRUE(run.reason.contains("gamma9")) << run.reason.toStdString();
   EXPECT_FALSE(fs::exists(sensors::ProfileFolder()));
 }
 
@@ -186,16 +183,9 @@ TEST(Wizard, TwoExposureSweepStopsAtFitWithTheReason) {
   }
   WizardSettings s;
   s.source = QString::fromStdString((tmp / "two").string());
-  s.automatic = true;
-  CalibrationWizard w(s);
-  QString reason;
-  QObject::connect(&w, &CalibrationWizard::failed, [&](const QString& m) { reason = m; });
-  bool finished = false;
-  QObject::connect(&w, &QDialog::finished, [&] { finished = true; });
-  w.show();
-  ASSERT_TRUE(WaitFor([&] { return finished; }));
-  EXPECT_EQ(w.exit_code(), 1);
-  EXPECT_TRUE(reason.contains("at least 3")) << reason.toStdString();
+  const test::AutomaticRun run = test::RunWizardAutomatic(s);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_TRUE(run.reason.contains("at least 3")) << run.reason.toStdString();
   EXPECT_FALSE(fs::exists(sensors::ProfileFolder()));
 }
 
