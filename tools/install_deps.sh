@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages HDRFusion needs to build and test, only those missing.
-# Run as root (or with sudo available). The CUDA toolkit is optional and never installed
+# Run as root (or with sudo available). pfstools and pfstmo (GPL programs) are the tone-mapping
+# reference the tests run; nothing links them. The CUDA toolkit is optional and never installed
 # here: when nvcc is present the CUDA backend is built, otherwise the CPU backend only.
 # --peers also installs the peers of the tracking benchmark (OpenCV contrib rgbd, Open3D),
 # so that hdrfusion-peers is built and `hdrfusion-experiments paper --peers ...` runs them.
@@ -12,6 +13,7 @@ packages=(
   libopencv-photo-dev
   libopenexr-dev libopenni2-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
+  pfstools pfstmo
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(libopencv-contrib-dev libopen3d-dev)

@@ -16,5 +16,6 @@ Command AddEvalCommand(CLI::App& app);
 Command AddSensorsCommand(CLI::App& app);
 Command AddRecordCommand(CLI::App& app);
 Command AddCaptureSweepCommand(CLI::App& app);
+Command AddTonemapCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

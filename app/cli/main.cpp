@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
       hdrf::cli::AddSensorsCommand(app),
       hdrf::cli::AddRecordCommand(app),
       hdrf::cli::AddCaptureSweepCommand(app),
+      hdrf::cli::AddTonemapCommand(app),
       hdrf::cli::AddBenchCommand(app),
   };
   return hdrf::cli::Run(app, commands, argc, argv);

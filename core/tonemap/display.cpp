@@ -27,13 +27,6 @@ float LogAverageLuminance(const Float3* rgb, std::size_t n) {
   return k ? float(std::exp(s / double(k))) : 1.f;
 }
 
-Float3 ReinhardPixel(Float3 c) {
-  if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) return {0, 0, 0};
-  c = {std::max(0.f, c.x), std::max(0.f, c.y), std::max(0.f, c.z)};
-  const float l = Luminance(c);
-  return l > 0 ? c * (1.f / (1.f + l)) : Float3{0, 0, 0};
-}
-
 ColorImage Reinhard(const RadianceImage& radiance, float key) {
   const float scale = key / LogAverageLuminance(radiance.data(), radiance.size());
   ColorImage out(radiance.width(), radiance.height());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/image.h"
+#include "tonemap/reinhard/reinhard.h"
 
 namespace hdrf::tonemap {
 
@@ -11,11 +12,6 @@ float SrgbEncode(float linear);
 
 // Log-average luminance (Rec. 709) of the finite, positive pixels; 1 where there are none.
 float LogAverageLuminance(const Float3* rgb, std::size_t n);
-
-// Reinhard's global curve on one pixel already scaled by the exposure: c / (1 + L(c)),
-// colour ratios kept, in linear light; non-finite or negative input gives black. The one
-// definition the reports, the PLY display colours and the studio's views use.
-Float3 ReinhardPixel(Float3 scaled);
 
 // Global Reinhard operator: scales the image so that its log-average luminance maps to
 // `key`, applies ReinhardPixel, encodes sRGB.

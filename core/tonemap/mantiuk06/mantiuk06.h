@@ -1,0 +1,43 @@
+// Contrast-domain tone mapping (Mantiuk, Myszkowski, Seidel, "A Perceptual Framework for
+// Contrast Processing of High Dynamic Range Images", ACM TAP 2006): local contrasts at all
+// scales are compressed in a perceptually uniform response space, so that small details
+// keep their visibility while the large luminance differences shrink to fit the display.
+#pragma once
+
+#include <vector>
+
+#include "common/image.h"
+#include "tonemap/mantiuk06/mantiuk06_impl.h"
+#include "tonemap/operator.h"
+
+namespace hdrf::tonemap::m06 {
+
+struct Options {
+  bool equalise = false;   // contrast equalisation instead of contrast mapping
+  double contrast = 0.1;   // mapping: response scale factor; equalisation: strength
+  double saturation = 0.8; // colour saturation (exponent of the colour ratios)
+  double detail = 1;       // detail factor: >1 treats contrasts as larger (stronger local detail)
+  int iterations = 200;    // most conjugate-gradient iterations
+  double tolerance = 1e-3; // relative residual to stop at
+  void Check() const;
+};
+
+// The transducer tables (response in just-noticeable differences against log10 contrast),
+// built from the contrast discrimination threshold model (see mantiuk06_impl.h).
+const Transducer& DefaultTransducer();
+
+struct Result {
+  int iterations = 0;
+  double residual = 0;  // relative residual reached
+  bool converged = false;
+};
+
+// Radiance to display-linear RGB on the CPU. Pixels with no data are black. Returns the
+// solver's outcome (a fit that stops at the iteration limit is still usable: reported, not
+// fatal, as for the reference implementation).
+Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o);
+
+OperatorDecl Declaration();  // key "mantiuk06"
+Options OptionsFrom(const Params& p);
+
+}  // namespace hdrf::tonemap::m06
