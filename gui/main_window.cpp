@@ -36,6 +36,7 @@
 #include "common/cuda_runtime.h"
 #include "common/error.h"
 #include "gui/exposure_plot.h"
+#include "gui/tone_panel.h"
 #include "gui/image_view.h"
 #include "gui/sensor_panel.h"
 #include "gui/settings_form.h"
@@ -105,6 +106,17 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   if (!o.source.isEmpty()) source_->setCurrentText(o.source);
   if (source_->currentText().startsWith("openni:")) ShowCameraPanel();
   if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
+  if (!o.tone.isEmpty()) {
+    // "mantiuk06,contrast=0.2": the operator, then parameters as on the CLI's --set.
+    const QStringList parts = o.tone.split(',');
+    ToneChoice tc;
+    tc.op = parts[0].toStdString();
+    const auto& decl = tonemap::FindOperator(tc.op);  // throws, naming the known operators
+    for (int i = 1; i < parts.size(); ++i) tonemap::ParseSetting(decl, parts[i].toStdString(), tc.values);
+    tonemap::ResolveParams(decl, tc.values);  // checks the values
+    tone_panel_->SetChoice(tc);
+    tone_->Set(tone_panel_->choice());
+  }
   // The scan thread.
   worker_ = new ScanWorker;
   worker_->moveToThread(&thread_);
@@ -219,29 +231,19 @@ void MainWindow::BuildControls() {
   layout->addWidget(eng);
   // Tone mapping.
   auto* tone = new QGroupBox(tr("Tone mapping (OpenColorIO %1 / %2)").arg(tone_->display(), tone_->view()));
-  auto* tf = new QFormLayout(tone);
-  tone_op_ = new QComboBox;
-  tone_op_->addItems({tr("Reinhard (global)"), tr("Linear")});
-  exposure_ = new QSlider(Qt::Horizontal);
-  exposure_->setRange(-40, 40);
-  exposure_->setToolTip(tr("Exposure in tenths of a stop"));
-  gamma_ = new QDoubleSpinBox;
-  gamma_->setRange(0.4, 3.0);
-  gamma_->setSingleStep(0.1);
-  gamma_->setValue(1.0);
-  tf->addRow(tr("Operator"), tone_op_);
-  tf->addRow(tr("Exposure"), exposure_);
-  tf->addRow(tr("Gamma"), gamma_);
-  auto retone = [this] {
-    tone_settings_.op = tone_op_->currentIndex() == 0 ? ToneSettings::Operator::kReinhard : ToneSettings::Operator::kLinear;
-    tone_settings_.exposure_stops = float(exposure_->value()) / 10.f;
-    tone_settings_.gamma = float(gamma_->value());
-    shown_.reset();  // redraw with the new mapping
+  auto* tf = new QVBoxLayout(tone);
+  tone_panel_ = new TonePanel;
+  tf->addWidget(tone_panel_);
+  connect(tone_panel_, &TonePanel::changed, this, [this](const ToneChoice& c) {
+    try {
+      tone_->Set(c);
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(QString::fromUtf8(e.what()), 8000);
+      return;
+    }
+    shown_.reset();  // redraw with the new mapping; the scan itself runs on
     mesh_shown_.reset();
-  };
-  connect(tone_op_, &QComboBox::currentIndexChanged, this, retone);
-  connect(exposure_, &QSlider::valueChanged, this, retone);
-  connect(gamma_, &QDoubleSpinBox::valueChanged, this, retone);
+  });
   layout->addWidget(tone);
   layout->addStretch(1);
   auto* dock = new QDockWidget(tr("Controls"), this);
@@ -509,12 +511,12 @@ void MainWindow::Render() {
     return;
   }
   const auto& im = s->images;
-  const ToneSettings ts = tone_settings_;
+  const double t = s->report.timestamp;  // the frame's own time: the curve filters at the real frame rate
   // 2-D views (hidden docks are skipped: they cost nothing).
   auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
   RenderColourAndDepth(s);
   if (visible("radiance")) {
-    views_["radiance"]->SetImage(tone_->Map(im.radiance, ts), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
+    views_["radiance"]->SetImage(tone_->Map(im.radiance, ToneView::kLive, t), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
                                  [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });
   }
   if (visible("nr")) {
@@ -533,7 +535,7 @@ void MainWindow::Render() {
   }
   if (visible("model_radiance") && !im.render.radiance.empty()) {
     views_["model_radiance"]->SetImage(
-        tone_->Map(im.render.radiance, ts), [s](int x, int y) { return Rad(s->images.render.radiance(x, y)); },
+        tone_->Map(im.render.radiance, ToneView::kModel, t), [s](int x, int y) { return Rad(s->images.render.radiance(x, y)); },
         [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.render.radiance); });
   }
   if (visible("model_normals") && !im.render.normal.empty()) {
@@ -558,7 +560,7 @@ void MainWindow::Render() {
   if (s->mesh && s->mesh != mesh_shown_ && (now - mesh_time_ms_ > 300 || !mesh_shown_)) {
     mesh_shown_ = s->mesh;
     mesh_time_ms_ = now;
-    view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance, ts));
+    view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance));
   }
   view3d_->SetTrajectory(s->trajectory, s->camera);
   // Status.
@@ -641,9 +643,18 @@ void MainWindow::LoadSettings() {
   restoreState(s.value("window/state").toByteArray());
   if (s.contains("source")) source_->setCurrentText(s.value("source").toString());
   engine_->Load(s);
-  tone_op_->setCurrentIndex(s.value("tone/operator", 0).toInt());
-  exposure_->setValue(s.value("tone/exposure", 0).toInt());
-  gamma_->setValue(s.value("tone/gamma", 1.0).toDouble());
+  // Tone mapping: the operator's key and the values set for it ("tone/<op>/<key>").
+  ToneChoice tc;
+  tc.op = s.value("tone/op", QString::fromStdString(tc.op)).toString().toStdString();
+  s.beginGroup(QStringLiteral("tone/") + QString::fromStdString(tc.op));
+  for (const QString& k : s.childKeys()) tc.values[k.toStdString()] = s.value(k).toDouble();
+  s.endGroup();
+  tone_panel_->SetChoice(tc);
+  try {
+    tone_->Set(tone_panel_->choice());
+  } catch (const std::exception&) {
+    tone_->Set({});
+  }
 }
 
 void MainWindow::SaveSettings() const {
@@ -652,9 +663,10 @@ void MainWindow::SaveSettings() const {
   s.setValue("window/state", saveState());
   s.setValue("source", source_->currentText());
   engine_->Save(s);
-  s.setValue("tone/operator", tone_op_->currentIndex());
-  s.setValue("tone/exposure", exposure_->value());
-  s.setValue("tone/gamma", gamma_->value());
+  const ToneChoice tc = tone_panel_->choice();
+  s.setValue("tone/op", QString::fromStdString(tc.op));
+  s.remove(QStringLiteral("tone/") + QString::fromStdString(tc.op));
+  for (const auto& [k, v] : tc.values) s.setValue(QStringLiteral("tone/%1/%2").arg(QString::fromStdString(tc.op), QString::fromStdString(k)), v);
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {

@@ -41,6 +41,7 @@ struct StudioOptions {
   QString screenshot;        // non-empty: run, save the window and a JSON report, quit
   QString device;            // "", "cpu" or "cuda"
   bool autostart = false;
+  QString tone;              // non-empty: tone-mapping operator key, with optional ",key=value,..."
 };
 
 class MainWindow : public QMainWindow {
@@ -109,7 +110,6 @@ class MainWindow : public QMainWindow {
   QThread thread_;
   ScanWorker* worker_ = nullptr;
   std::unique_ptr<ToneMapper> tone_;
-  ToneSettings tone_settings_;
   std::shared_ptr<const Snapshot> latest_, shown_;
   QPointer<wizard::CalibrationWizard> wizard_;
   std::shared_ptr<const mesh::Mesh> mesh_shown_;
@@ -119,12 +119,11 @@ class MainWindow : public QMainWindow {
   QMap<QString, QDockWidget*> docks_;
   VtkView* view3d_ = nullptr;
   ExposurePlot* plot_ = nullptr;
-  QComboBox *source_ = nullptr, *tone_op_ = nullptr;
-  QDoubleSpinBox* gamma_ = nullptr;
+  QComboBox* source_ = nullptr;
+  class TonePanel* tone_panel_ = nullptr;
   SettingsForm* engine_ = nullptr;  // generated from the settings registry
   SensorPanel* sensor_panel_ = nullptr;
   std::unique_ptr<sensors::HotplugMonitor> hotplug_;  // events come on OpenNI2's threads
-  QSlider* exposure_ = nullptr;
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
   QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
   int frames_shown_ = 0;

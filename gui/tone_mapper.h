@@ -1,49 +1,63 @@
-// Tone mapping for the studio's HDR views and the mesh colours: exposure (stops, relative to
-// the image's own log-average so that views stay readable under auto exposure), an operator
-// (linear clip or global Reinhard), display gamma, then the OpenColorIO display/view
-// transform of the shipped config (resources/ocio/config.ocio: sRGB display).
+// Tone mapping for the studio's HDR views and the mesh colours: any declared operator
+// (core/tonemap), one instance per view so each keeps its own temporal filter, then the
+// OpenColorIO display/view transform (io::OcioDisplay; the built-in config is an sRGB
+// display). The mesh colours follow the model view's operator (its curve from the model
+// render), so the 3-D view and the model view agree.
 #pragma once
 
 #include <QImage>
 #include <QString>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "common/image.h"
+#include "io/ocio_display.h"
+#include "tonemap/operator.h"
 
 namespace hdrf::gui {
 
-struct ToneSettings {
-  enum class Operator { kLinear, kReinhard };
-  Operator op = Operator::kReinhard;
-  float exposure_stops = 0;  // added to the automatic key
-  float gamma = 1.0f;        // extra display gamma on top of the sRGB curve (1 = none)
-  bool auto_key = true;      // normalise by the log-average luminance first
+// Which view a mapping is for (each has its own operator state).
+enum class ToneView { kLive, kModel, kOther };
+
+// The operator and its parameters as the user set them (values not set take the defaults).
+struct ToneChoice {
+  std::string op = "mantiuk08";
+  tonemap::Params values;
 };
 
 class ToneMapper {
  public:
-  // Loads the OCIO config from the Qt resource ":/ocio/config.ocio" (or `config_file`);
-  // throws hdrf::Error naming the file when it cannot be read or parsed.
-  explicit ToneMapper(const QString& config_file = QStringLiteral(":/ocio/config.ocio"));
+  // The built-in OCIO config, or a config file (throws hdrf::Error naming the file).
+  ToneMapper();
+  explicit ToneMapper(const QString& config_file);
   ~ToneMapper();
   ToneMapper(const ToneMapper&) = delete;
   ToneMapper& operator=(const ToneMapper&) = delete;
 
-  // Display and view names of the config ("sRGB", "Standard").
   QString display() const;
   QString view() const;
 
-  // Linear radiance to an 8-bit display image; pixels with no data (all zero) stay black.
-  QImage Map(const RadianceImage& radiance, const ToneSettings& s) const;
-  // The same mapping for a list of colours (mesh vertices), with the key of that list.
-  std::vector<Rgb8> MapColours(const std::vector<Float3>& radiance, const ToneSettings& s) const;
-  // The display transform alone on linear values in [0, 1] (for tests): in place.
+  // Switches operator or parameters (checked: throws SettingError); the views' filters
+  // start over.
+  void Set(const ToneChoice& c);
+  const ToneChoice& choice() const { return choice_; }
+
+  // Linear radiance to an 8-bit display image; `seconds` is the frame's time for the
+  // temporal filters (negative: a still). Pixels with no data stay black.
+  QImage Map(const RadianceImage& radiance, ToneView v = ToneView::kOther, double seconds = -1);
+  // Mesh vertex colours, with the model view's curve where it has mapped a render.
+  std::vector<Rgb8> MapColours(const std::vector<Float3>& radiance);
+  // The display transform alone on display-linear values in [0, 1] (for tests): in place.
   void DisplayTransform(float* rgb, long pixels) const;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  tonemap::Operator& For(ToneView v);
+  std::unique_ptr<io::OcioDisplay> ocio_;
+  ToneChoice choice_;
+  tonemap::Params params_;
+  std::map<ToneView, std::unique_ptr<tonemap::Operator>> ops_;
 };
 
 }  // namespace hdrf::gui

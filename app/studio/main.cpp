@@ -1,6 +1,7 @@
 // hdrfusion-studio: the desktop scanning studio. With no argument it opens on the built-in
 // synthetic sensor; Start scans. Scriptable for tests and documentation:
 //   hdrfusion-studio [--source SPEC] [--frames N] [--device cpu|cuda] [--screenshot FILE] [--start]
+//                    [--tone OP[,KEY=VALUE...]]
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QTimer>
@@ -32,7 +33,10 @@ int main(int argc, char** argv) {
   QCommandLineOption device("device", "cpu or cuda", "DEVICE");
   QCommandLineOption shot("screenshot", "Run, save the window to FILE (and FILE.json), and quit", "FILE");
   QCommandLineOption start("start", "Start scanning at once");
-  p.addOptions({source, frames, device, shot, start});
+  QCommandLineOption tone("tone", "Tone mapping: an operator (mantiuk08, mantiuk06, reinhard, exposure, linear), "
+                                  "then parameters as key=value, comma-separated (see hdrfusion tonemap --list)",
+                          "OP[,KEY=VALUE...]");
+  p.addOptions({source, frames, device, shot, start, tone});
   p.process(app);
   hdrf::gui::StudioOptions o;
   o.source = p.value(source);
@@ -40,6 +44,7 @@ int main(int argc, char** argv) {
   o.device = p.value(device);
   o.screenshot = p.value(shot);
   o.autostart = p.isSet(start);
+  o.tone = p.value(tone);
   if (!o.device.isEmpty() && o.device != "cpu" && o.device != "cuda") {
     std::fprintf(stderr, "hdrfusion-studio: --device must be cpu or cuda\n");
     return 2;

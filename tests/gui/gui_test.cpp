@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <QApplication>
+#include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QSignalSpy>
 #include <QSettings>
@@ -19,6 +21,7 @@
 #include "gui/scan_worker.h"
 #include "gui/settings_form.h"
 #include "gui/tone_mapper.h"
+#include "gui/tone_panel.h"
 #include "io/exr.h"
 #include "io/ply.h"
 #include "io/sequence.h"
@@ -44,29 +47,75 @@ TEST(ToneMapper, OcioDisplayTransformIsTheSrgbCurve) {
   EXPECT_GT(out[3 * 500], 0.7f);  // 0.5 linear is ~0.735 encoded: really a curve
 }
 
-TEST(ToneMapper, ExposureOperatorAndBadPixels) {
+TEST(ToneMapper, EveryDeclaredOperatorMapsAndLeavesBadPixelsBlack) {
   ToneMapper tm;
-  RadianceImage r(4, 1);
-  r[0] = {0.1f, 0.1f, 0.1f};
-  r[1] = {1.f, 1.f, 1.f};
-  r[2] = {std::nanf(""), 1.f, 1.f};  // non-finite: black
-  r[3] = {0, 0, 0};                   // no data: black
-  ToneSettings s;
-  s.op = ToneSettings::Operator::kLinear;
-  const QImage a = tm.Map(r, s);
-  s.exposure_stops = 1;
-  const QImage b = tm.Map(r, s);
-  EXPECT_GT(qGray(b.pixel(0, 0)), qGray(a.pixel(0, 0)));  // one stop brighter
-  EXPECT_EQ(a.pixel(2, 0), qRgb(0, 0, 0));
-  EXPECT_EQ(a.pixel(3, 0), qRgb(0, 0, 0));
-  s.exposure_stops = 6;
-  EXPECT_EQ(qGray(tm.Map(r, s).pixel(1, 0)), 255);  // linear clips
-  s.op = ToneSettings::Operator::kReinhard;
-  EXPECT_LT(qGray(tm.Map(r, s).pixel(1, 0)), 255);  // Reinhard compresses
-  // Mesh colours use the same mapping.
-  const auto c = tm.MapColours({{0.1f, 0.1f, 0.1f}, {1.f, 1.f, 1.f}}, ToneSettings{});
+  RadianceImage r(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) r(x, y) = Float3{1, 1, 1} * std::pow(10.f, float(x) / 4.f - 2);  // 4 decades
+  r(0, 0) = {std::nanf(""), 1.f, 1.f};  // non-finite: black
+  r(1, 0) = {0, 0, 0};                  // no data: black
+  for (const auto& d : tonemap::Operators()) {
+    tm.Set({d.key, {}});
+    const QImage a = tm.Map(r);
+    EXPECT_EQ(a.pixel(0, 0), qRgb(0, 0, 0)) << d.key;
+    EXPECT_EQ(a.pixel(1, 0), qRgb(0, 0, 0)) << d.key;
+    EXPECT_LT(qGray(a.pixel(2, 5)), qGray(a.pixel(14, 5))) << d.key;  // brighter stays brighter
+  }
+  tm.Set({"linear", {}});
+  const QImage a = tm.Map(r);
+  tm.Set({"linear", {{"exposure", 1}}});
+  const QImage b = tm.Map(r);
+  EXPECT_GT(qGray(b.pixel(5, 5)), qGray(a.pixel(5, 5)));  // one stop brighter
+  EXPECT_EQ(qGray(b.pixel(15, 5)), 255);  // linear clips
+  tm.Set({"reinhard", {{"exposure", 1}}});
+  EXPECT_LT(qGray(tm.Map(r).pixel(15, 5)), 255);  // Reinhard compresses
+  // Mesh colours follow the model view's curve.
+  tm.Set({"mantiuk08", {}});
+  const QImage m = tm.Map(r, ToneView::kModel);
+  const auto c = tm.MapColours({r(4, 3), r(12, 3)});
   ASSERT_EQ(c.size(), 2u);
-  EXPECT_LT(c[0].g, c[1].g);
+  EXPECT_NEAR(c[0].g, qGreen(m.pixel(4, 3)), 1);
+  EXPECT_NEAR(c[1].g, qGreen(m.pixel(12, 3)), 1);
+  // A value out of its declared range is refused, naming it.
+  test::ExpectErrorContaining([&] { tm.Set({"mantiuk08", {{"peak", 1e9}}}); }, {"peak", "10000", "cd/m²"});
+}
+
+// The panel is generated from the declarations: one editor per parameter, with the declared
+// range and unit; presets set the display values; switching keeps each operator's values.
+TEST(TonePanel, IsGeneratedFromTheDeclarations) {
+  TonePanel panel;
+  ToneChoice last;
+  int emitted = 0;
+  QObject::connect(&panel, &TonePanel::changed, [&](const ToneChoice& c) { last = c, ++emitted; });
+  for (const auto& d : tonemap::Operators()) {
+    panel.SetChoice({d.key, {}});
+    for (const auto& p : d.params) {
+      QWidget* w = panel.findChild<QWidget*>(QStringLiteral("tone_") + QString::fromStdString(p.key));
+      ASSERT_NE(w, nullptr) << d.key << " " << p.key;
+      if (auto* s = qobject_cast<QDoubleSpinBox*>(w)) {
+        EXPECT_EQ(s->minimum(), p.min) << p.key;
+        EXPECT_EQ(s->maximum(), p.max) << p.key;
+        EXPECT_NEAR(s->value(), p.def, 1e-9) << p.key;
+        if (!p.unit.empty()) EXPECT_TRUE(s->suffix().contains(QString::fromStdString(p.unit))) << p.key;
+      }
+    }
+  }
+  panel.SetChoice({"mantiuk08", {}});
+  auto* preset = panel.findChild<QComboBox*>("tone_preset");
+  ASSERT_NE(preset, nullptr);
+  EXPECT_EQ(preset->currentText(), "LCD");  // the defaults are the lcd preset
+  preset->setCurrentIndex(preset->findData("crt"));
+  EXPECT_EQ(last.op, "mantiuk08");
+  EXPECT_EQ(last.values.at("peak"), 80);
+  EXPECT_EQ(panel.findChild<QDoubleSpinBox*>("tone_peak")->value(), 80);
+  auto* op = panel.findChild<QComboBox*>("tone_operator");
+  op->setCurrentIndex(op->findData("mantiuk06"));
+  EXPECT_EQ(last.op, "mantiuk06");
+  panel.findChild<QDoubleSpinBox*>("tone_contrast")->setValue(0.3);
+  EXPECT_EQ(last.values.at("contrast"), 0.3);
+  op->setCurrentIndex(op->findData("mantiuk08"));
+  EXPECT_EQ(last.values.at("peak"), 80);  // kept while away
+  EXPECT_GE(emitted, 4);
 }
 
 TEST(ToneMapper, UnreadableConfigNamesTheFile) {
