@@ -108,13 +108,8 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
   if (!o.tone.isEmpty()) {
     // "mantiuk06,contrast=0.2": the operator, then parameters as on the CLI's --set.
-    const QStringList parts = o.tone.split(',');
-    ToneChoice tc;
-    tc.op = parts[0].toStdString();
-    const auto& decl = tonemap::FindOperator(tc.op);  // throws, naming the known operators
-    for (int i = 1; i < parts.size(); ++i) tonemap::ParseSetting(decl, parts[i].toStdString(), tc.values);
-    tonemap::ResolveParams(decl, tc.values);  // checks the values
-    tone_panel_->SetChoice(tc);
+    const tonemap::Spec spec = tonemap::ParseSpec(o.tone.toStdString());  // throws, naming what is wrong
+    tone_panel_->SetChoice({spec.op, spec.values});
     tone_->Set(tone_panel_->choice());
   }
   // The scan thread.
@@ -365,7 +360,8 @@ void MainWindow::BuildMenus() {
     connect(dlg, &QProgressDialog::canceled, this, [this] { worker_->CancelExport(); });
     connect(worker_, &ScanWorker::exportProgress, dlg, [dlg](double f) { dlg->setValue(int(100 * f)); });
     connect(worker_, &ScanWorker::exportDone, dlg, [dlg](bool, const QString&) { dlg->close(); });
-    emit exportMesh(p);
+    const ToneChoice tc = tone_panel_->choice();
+    emit exportMesh(p, QString::fromStdString(tonemap::FormatSpec({tc.op, tc.values})));
   });
   exp->addAction(tr("Trajectory (TUM)…"), this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, tr("Export trajectory"), "trajectory.txt");

@@ -78,7 +78,7 @@ class MainWindow : public QMainWindow {
   void pause();
   void stop();
   void reset();
-  void exportMesh(const QString& path);
+  void exportMesh(const QString& path, const QString& tone);
   void exportTrajectory(const QString& path);
   void exportRender(const QString& path);
   void screenshotTaken(bool ok);

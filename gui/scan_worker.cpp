@@ -9,7 +9,9 @@
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
+#include "io/ocio_display.h"
 #include "io/ply.h"
+#include "tonemap/operator.h"
 #include "io/source_spec.h"
 #include "io/tum.h"
 
@@ -445,7 +447,7 @@ void ScanWorker::TryReconnect(int attempt) {
   }
 }
 
-void ScanWorker::ExportMesh(const QString& path) {
+void ScanWorker::ExportMesh(const QString& path, const QString& tone) {
   cancel_export_ = false;
   if (!session_) {
     emit exportDone(false, tr("Nothing to export: no model"));
@@ -457,7 +459,14 @@ void ScanWorker::ExportMesh(const QString& path) {
       return !cancel_export_;
     });
     if (cancel_export_) throw Cancelled();
-    io::WritePly(path.toStdString(), m);  // through a temporary file: nothing half-written
+    const tonemap::Spec spec = tonemap::ParseSpec(tone.toStdString());
+    const auto& decl = tonemap::FindOperator(spec.op);
+    auto op = decl.make(tonemap::ResolveParams(decl, spec.values), Device::kCpu);
+    Image<Float3> shown;
+    op->Map(session_->pipeline().Render(session_->pipeline().pose()).radiance, shown, tonemap::FrameTime::Still());
+    const std::vector<Rgb8> display = io::OcioDisplay().Encode(op->MapList(m.radiance));
+    // Through a temporary file: nothing half-written.
+    io::WritePly(path.toStdString(), m, display.size() == m.position.size() ? &display : nullptr);
     emit exportProgress(1.0);
     emit exportDone(true, tr("Wrote %1 (%2 vertices, %3 triangles)").arg(path).arg(m.position.size()).arg(m.triangles.size()));
   } catch (const Cancelled&) {

@@ -88,7 +88,9 @@ class ScanWorker : public QObject {
   void Stop();   // pause and rewind the source; the model stays until Reset/Configure
   void Reset();  // new empty model, source rewound
   // Exports: mesh (PLY), trajectory (TUM), the model ray cast from the current pose (EXR).
-  void ExportMesh(const QString& path);
+  // The PLY's display colours through `tone` ("OP[,key=value...]"): the model rendered
+  // from the current pose sets the curve, as in the studio's model view and 3-D view.
+  void ExportMesh(const QString& path, const QString& tone = QStringLiteral("mantiuk08"));
   void ExportTrajectory(const QString& path);
   void ExportRender(const QString& path);
   // Live camera: exposure controls (the ae/awb/exposure/gain parts; unset ones stay).

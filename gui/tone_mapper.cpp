@@ -25,8 +25,21 @@ void ToneMapper::Set(const ToneChoice& c) {
 
 tonemap::Operator& ToneMapper::For(ToneView v) {
   auto& op = ops_[v];
-  if (!op) op = tonemap::FindOperator(choice_.op).make(params_);
+  if (!op) {
+    const auto& d = tonemap::FindOperator(choice_.op);
+    try {
+      op = d.make(params_, device_);
+    } catch (const Error&) {
+      op = d.make(params_, Device::kCpu);  // no usable GPU: the CPU gives the same result
+    }
+  }
   return *op;
+}
+
+void ToneMapper::SetDevice(Device d) {
+  if (d == device_) return;
+  device_ = d;
+  ops_.clear();
 }
 
 void ToneMapper::DisplayTransform(float* rgb, long pixels) const { ocio_->Apply(rgb, pixels); }
@@ -51,11 +64,7 @@ QImage ToneMapper::Map(const RadianceImage& r, ToneView v, double seconds) {
 }
 
 std::vector<Rgb8> ToneMapper::MapColours(const std::vector<Float3>& r) {
-  std::vector<Float3> lin = For(ToneView::kModel).MapList(r);
-  if (!lin.empty()) ocio_->Apply(&lin.data()->x, long(lin.size()));
-  std::vector<Rgb8> out(lin.size());
-  for (std::size_t i = 0; i < lin.size(); ++i) out[i] = {To8(lin[i].x), To8(lin[i].y), To8(lin[i].z)};
-  return out;
+  return ocio_->Encode(For(ToneView::kModel).MapList(r));
 }
 
 }  // namespace hdrf::gui

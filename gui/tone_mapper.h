@@ -43,12 +43,16 @@ class ToneMapper {
   // start over.
   void Set(const ToneChoice& c);
   const ToneChoice& choice() const { return choice_; }
+  // Where the Mantiuk operators run (CUDA falls back to the CPU where it cannot be used).
+  void SetDevice(Device d);
 
   // Linear radiance to an 8-bit display image; `seconds` is the frame's time for the
   // temporal filters (negative: a still). Pixels with no data stay black.
   QImage Map(const RadianceImage& radiance, ToneView v = ToneView::kOther, double seconds = -1);
   // Mesh vertex colours, with the model view's curve where it has mapped a render.
   std::vector<Rgb8> MapColours(const std::vector<Float3>& radiance);
+  // The tone curve the view's operator used last (empty for local operators).
+  tonemap::Operator::Curve LastCurve(ToneView v) { return For(v).LastCurve(); }
   // The display transform alone on display-linear values in [0, 1] (for tests): in place.
   void DisplayTransform(float* rgb, long pixels) const;
 
@@ -58,6 +62,7 @@ class ToneMapper {
   ToneChoice choice_;
   tonemap::Params params_;
   std::map<ToneView, std::unique_ptr<tonemap::Operator>> ops_;
+  Device device_ = Device::kCpu;
 };
 
 }  // namespace hdrf::gui

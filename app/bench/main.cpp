@@ -9,16 +9,25 @@
 #include "common/cuda_runtime.h"
 #include "common/error.h"
 #include "engine_bench.h"
+#include "tonemap_bench.h"
 
 int main(int argc, char** argv) {
   using namespace hdrf;
   pipeline::EngineBenchOptions o;
   o.devices = {Device::kCpu, Device::kCuda};
   bool custom_cases = false;
+  bool tonemap = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--frames" && has_value) {
+    if (a == "--suite" && has_value) {
+      const std::string s = argv[++i];
+      if (s != "engine" && s != "tonemap") {
+        std::fprintf(stderr, "hdrfusion-bench: --suite must be engine or tonemap, not '%s'\n", s.c_str());
+        return 2;
+      }
+      tonemap = s == "tonemap";
+    } else if (a == "--frames" && has_value) {
       o.frames = std::atoi(argv[++i]);
     } else if (a == "--device" && has_value) {
       const std::string d = argv[++i];
@@ -48,7 +57,7 @@ int main(int argc, char** argv) {
       custom_cases = true;
       o.cases.push_back(c);
     } else {
-      std::fprintf(stderr, "usage: hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel full|no-nr|compact|all]\n");
+      std::fprintf(stderr, "usage: hdrfusion-bench [--suite engine|tonemap] [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel full|no-nr|compact|all]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -58,6 +67,26 @@ int main(int argc, char** argv) {
   }
   std::string why;
   const bool gpu = CudaAvailable(&why);
+  if (tonemap) {
+    std::vector<Device> devices;
+    for (Device d : o.devices)
+      if (d == Device::kCpu || gpu) devices.push_back(d);
+    const auto frames = bench::SyntheticHdrFrames();
+    std::vector<std::pair<std::string, const RadianceImage*>> images;
+    for (const auto& [n, img] : frames) images.emplace_back(n, &img);
+    std::printf("tone-mapping bench: synthetic HDR frames at 640x480, %d timed frames after one warm-up (mantiuk06 on the\n"
+                "CPU: a tenth), transfers included; GPU: %s\n\n| image | operator | device | ms | frames/s | mantiuk06 iterations |\n"
+                "|---|---|---|---|---|---|\n", o.frames, gpu ? CudaDeviceDescription().c_str() : why.c_str());
+    try {
+      for (const auto& r : bench::RunTonemapBench(images, o.frames, devices))
+        std::printf("| %s | %s | %s | %.2f | %.1f | %s |\n", r.image.c_str(), r.op.c_str(), DeviceName(r.device), r.ms,
+                    1000 / r.ms, r.op == "mantiuk06" ? std::to_string(r.iterations).c_str() : "");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "hdrfusion-bench: %s\n", e.what());
+      return 1;
+    }
+    return 0;
+  }
   std::printf("engine bench: synthetic room, flicker auto exposure, tracker nr+icp, %d timed frames after 5 warm-up\n"
               "GPU: %s\n\n", o.frames, gpu ? CudaDeviceDescription().c_str() : why.c_str());
   try {

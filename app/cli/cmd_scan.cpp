@@ -23,7 +23,9 @@
 #include "mesh/mesh.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/scan_session.h"
+#include "io/ocio_display.h"
 #include "tonemap/display.h"
+#include "tonemap/operator.h"
 
 namespace hdrf::cli {
 
@@ -49,10 +51,14 @@ ColorImage ShadeNormals(const Image<Float3>& n, const Pose& T_world_camera) {
   return out;
 }
 
-void WriteRender(const fs::path& dir, const std::string& name, const volume::Volume::Rendering& r,
-                 const Pose& T) {
+// The render's PNG through the chosen operator and the OpenColorIO display transform.
+void WriteRender(const fs::path& dir, const std::string& name, const volume::Volume::Rendering& r, const Pose& T,
+                 tonemap::Operator& tone, const io::OcioDisplay& ocio) {
   io::WriteExr(dir / (name + ".exr"), r.radiance, io::ExrPrecision::kHalf);
-  io::WriteColorPng(dir / (name + ".png"), tonemap::Reinhard(r.radiance));
+  Image<Float3> shown;
+  tone.Map(r.radiance, shown, tonemap::FrameTime::Still());
+  ocio.Apply(shown);
+  io::WriteColorPng(dir / (name + ".png"), io::OcioDisplay::Quantise(shown));
   io::WriteColorPng(dir / (name + "_normals.png"), ShadeNormals(r.normal, T));
 }
 
@@ -62,6 +68,7 @@ Command AddScanCommand(CLI::App& app) {
   struct Args {
     std::string source, out, options, response;
     int max_frames = 0;
+    std::string tone = "mantiuk08";
     bool frame_to_frame = false;
   };
   auto a = std::make_shared<Args>();
@@ -76,6 +83,9 @@ Command AddScanCommand(CLI::App& app) {
   cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
       ->check(CLI::IsMember({"srgb"}));
   cmd->add_option("--frames", a->max_frames, "Process at most this many frames");
+  cmd->add_option("--tone", a->tone, "Tone mapping of the PNG renders and the PLY's display colours: OP[,key=value...] "
+                                     "(see hdrfusion tonemap --list)")
+      ->capture_default_str();
   auto flags = std::make_shared<SettingFlags>(cmd);
   return {cmd, [a, flags] {
     pipeline::PipelineOptions o;
@@ -83,6 +93,10 @@ Command AddScanCommand(CLI::App& app) {
     if (a->frame_to_frame) o.tracker.frame_to_model = false;
     flags->Apply(o);
     o.Check();
+    // The tone mapping is checked before scanning: a typo must not cost a scan.
+    const tonemap::Spec tone_spec = tonemap::ParseSpec(a->tone);
+    const tonemap::OperatorDecl& tone_decl = tonemap::FindOperator(tone_spec.op);
+    const tonemap::Params tone_params = tonemap::ResolveParams(tone_decl, tone_spec.values);
     auto source = sensors::OpenAnySource(a->source, a->response);
     const fs::path out = a->out;
     std::error_code ec;
@@ -135,9 +149,14 @@ Command AddScanCommand(CLI::App& app) {
     io::WriteTrajectory(out / "trajectory.txt", trajectory);
     std::fprintf(stderr, "scan: extracting the mesh...\n");
     const mesh::Mesh m = pipe.ExtractMesh();
-    io::WritePly(out / "mesh.ply", m);
-    WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose());
-    WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity());
+    // Renders and the mesh's display colours through one operator instance: the mesh takes
+    // the curve of the last render (as the studio's 3-D view takes the model view's).
+    const io::OcioDisplay ocio;
+    auto tone = tone_decl.make(tone_params, Device::kCpu);
+    WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity(), *tone, ocio);
+    WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose(), *tone, ocio);
+    const std::vector<Rgb8> display = ocio.Encode(tone->MapList(m.radiance));
+    io::WritePly(out / "mesh.ply", m, m.radiance.size() == m.position.size() ? &display : nullptr);
     const pipeline::StageTimes mean = session.mean_ms();
     const pipeline::VolumeStats vs = pipe.volume_stats();
     const int lost = session.lost();

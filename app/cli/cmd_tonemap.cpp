@@ -45,7 +45,7 @@ void ListOperators() {
 
 Command AddTonemapCommand(CLI::App& app) {
   struct Args {
-    std::string in, out, op = "mantiuk08", curve, encode = "ocio", ocio_config, display, view;
+    std::string in, out, op = "mantiuk08", curve, encode = "ocio", ocio_config, display, view, device = "cpu";
     std::vector<std::string> sets;
     bool list = false;
   };
@@ -62,6 +62,8 @@ Command AddTonemapCommand(CLI::App& app) {
   cmd->add_option("--ocio-config", a->ocio_config, "OpenColorIO config file (default: the built-in sRGB config)");
   cmd->add_option("--display", a->display, "OpenColorIO display (default: the config's)");
   cmd->add_option("--view", a->view, "OpenColorIO view (default: the display's)");
+  cmd->add_option("--device", a->device, "cpu or cuda (the Mantiuk operators run on the GPU)")
+      ->check(CLI::IsMember({"cpu", "cuda"}));
   cmd->add_flag("--list", a->list, "List the operators and their parameters, then exit");
   return {cmd, [a] {
     if (a->list) {
@@ -82,7 +84,13 @@ Command AddTonemapCommand(CLI::App& app) {
       ocio = a->ocio_config.empty() ? std::make_unique<io::OcioDisplay>()
                                     : std::make_unique<io::OcioDisplay>(a->ocio_config, a->display, a->view);
     const RadianceImage hdr = io::ReadExr(a->in);
-    auto op = decl.make(params);
+    Device device = a->device == "cuda" ? Device::kCuda : Device::kCpu;
+    std::string why;
+    if (device == Device::kCuda && !CudaAvailable(&why)) {
+      std::fprintf(stderr, "hdrfusion: CUDA not usable (%s); running on the CPU\n", why.c_str());
+      device = Device::kCpu;
+    }
+    auto op = decl.make(params, device);
     Image<Float3> mapped;
     const auto t0 = std::chrono::steady_clock::now();
     op->Map(hdr, mapped, tonemap::FrameTime::Still());
@@ -110,8 +118,8 @@ Command AddTonemapCommand(CLI::App& app) {
       io::WriteColorPng(out, io::OcioDisplay::Quantise(mapped));
     }
     const std::string how = ext == ".exr" ? "display-linear" : ocio ? "OpenColorIO " + ocio->display() + " / " + ocio->view() : "gamma";
-    std::printf("%s: %s on %dx%d in %.1f ms; wrote %s (%s)\n", a->in.c_str(), decl.key.c_str(), hdr.width(), hdr.height(),
-                ms, a->out.c_str(), how.c_str());
+    std::printf("%s: %s on %dx%d in %.1f ms (%s); wrote %s (%s)\n", a->in.c_str(), decl.key.c_str(), hdr.width(),
+                hdr.height(), ms, DeviceName(device), a->out.c_str(), how.c_str());
     return 0;
   }};
 }

@@ -71,6 +71,14 @@ void OcioDisplay::Apply(float* rgb, long pixels) const {
   impl_->cpu->apply(desc);
 }
 
+std::vector<Rgb8> OcioDisplay::Encode(std::vector<Float3> lin) const {
+  if (!lin.empty()) Apply(&lin.data()->x, long(lin.size()));
+  std::vector<Rgb8> out(lin.size());
+  auto q = [](float v) { return std::uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f) * 255.f)); };
+  for (std::size_t i = 0; i < lin.size(); ++i) out[i] = {q(lin[i].x), q(lin[i].y), q(lin[i].z)};
+  return out;
+}
+
 ColorImage OcioDisplay::Quantise(const Image<Float3>& e) {
   ColorImage out(e.width(), e.height());
   auto q = [](float v) { return std::uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f) * 255.f)); };

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/image.h"
 
@@ -31,6 +32,8 @@ class OcioDisplay {
   // In place on packed RGB floats (display-linear in, display code values out).
   void Apply(float* rgb, long pixels) const;
   void Apply(Image<Float3>& img) const { Apply(&img.data()->x, long(img.size())); }
+  // Display-linear colours (mesh vertices) to 8-bit display colours.
+  std::vector<Rgb8> Encode(std::vector<Float3> display_linear) const;
   // Display code values as 8-bit colour (clamped, rounded; not finite is 0).
   static ColorImage Quantise(const Image<Float3>& encoded);
 

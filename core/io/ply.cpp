@@ -16,11 +16,18 @@ const char* kVertexProps[] = {"float x", "float y", "float z", "float nx", "floa
                               "float radiance_g", "float radiance_b"};
 }
 
-void WritePly(const std::filesystem::path& file, const mesh::Mesh& m) {
-  // Display colours: one Reinhard scale over all vertices with radiance.
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std::vector<Rgb8>* given) {
+  // Display colours: the given ones, or one Reinhard scale over all vertices with radiance.
+  if (given && given->size() != m.position.size())
+    throw Error(file.string() + ": " + std::to_string(given->size()) + " display colours for " +
+                std::to_string(m.position.size()) + " vertices");
   RadianceImage rad(int(m.radiance.size()), 1);
   for (std::size_t i = 0; i < m.radiance.size(); ++i) rad[i] = m.radiance[i];
-  const ColorImage display = m.radiance.empty() ? ColorImage() : tonemap::Reinhard(rad);
+  ColorImage display = m.radiance.empty() || given ? ColorImage() : tonemap::Reinhard(rad);
+  if (given) {
+    display = ColorImage(int(given->size()), 1);
+    std::copy(given->begin(), given->end(), display.data());
+  }
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment HDRFusion Studio: linear HDR radiance in "
        "radiance_r/g/b (model units), display colour tone-mapped\n"

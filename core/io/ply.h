@@ -9,9 +9,10 @@
 
 namespace hdrf::io {
 
-// Display colours come from a global Reinhard tone mapping of the vertex radiance. Written
-// through a temporary file and a rename: an interrupted export leaves nothing half-written.
-void WritePly(const std::filesystem::path& file, const mesh::Mesh& mesh);
+// Display colours are `display` (one per vertex, from a chosen tone-mapping operator) or,
+// without them, a global Reinhard tone mapping of the vertex radiance. Written through a
+// temporary file and a rename: an interrupted export leaves nothing half-written.
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& mesh, const std::vector<Rgb8>* display = nullptr);
 
 // Reads what WritePly writes (and any binary little-endian PLY with the same vertex
 // properties in the same order). Throws InputError naming the file on anything else.

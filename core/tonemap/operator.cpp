@@ -23,6 +23,7 @@ bool NoData(Float3 c) {
 
 std::string FormatNumber(double v) {
   std::ostringstream s;
+  s.precision(10);
   s << v;
   return s.str();
 }
@@ -176,6 +177,25 @@ void ParseSetting(const OperatorDecl& op, const std::string& text, Params& value
   if (used == 0 || used != value.size() || !std::isfinite(v))
     throw SettingError(key, "'" + value + "' is not a number");
   values[key] = v;
+}
+
+Spec ParseSpec(const std::string& text) {
+  Spec s;
+  s.op = text.substr(0, text.find(','));
+  const OperatorDecl& d = FindOperator(s.op);
+  for (std::size_t at = text.find(','); at != std::string::npos;) {
+    const std::size_t next = text.find(',', at + 1);
+    ParseSetting(d, text.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1), s.values);
+    at = next;
+  }
+  ResolveParams(d, s.values);  // checks
+  return s;
+}
+
+std::string FormatSpec(const Spec& spec) {
+  std::string out = spec.op;
+  for (const auto& [k, v] : spec.values) out += "," + k + "=" + FormatNumber(v);
+  return out;
 }
 
 void EncodeGamma(Image<Float3>& img, double gamma) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cuda_runtime.h"
 #include "common/image.h"
 
 namespace hdrf::tonemap {
@@ -46,7 +47,9 @@ struct OperatorDecl {
   std::vector<ParamDecl> params;
   std::vector<Preset> presets;
   bool local = false;  // a local operator (its result depends on neighbours, not only the pixel)
-  std::function<std::unique_ptr<Operator>(const Params&)> make;
+  // Makes an instance on a device (kCuda: throws hdrf::Error where the build or the machine
+  // has no usable GPU; the per-pixel operators run on the CPU either way).
+  std::function<std::unique_ptr<Operator>(const Params&, Device)> make;
 };
 
 // Timing of a frame for the temporal filters: seconds since any fixed origin, or a
@@ -94,6 +97,15 @@ Params ResolveParams(const OperatorDecl& op, const Params& values);
 Params ApplyPreset(const OperatorDecl& op, const std::string& preset, Params values);
 // Parses "key=value" (value a number, or on/off/true/false for booleans) into `values`.
 void ParseSetting(const OperatorDecl& op, const std::string& text, Params& values);
+
+// "OP[,key=value...]" (the CLI's --tone and the studio's): the operator (checked) and its
+// values (checked against the declaration); and back.
+struct Spec {
+  std::string op;
+  Params values;
+};
+Spec ParseSpec(const std::string& text);
+std::string FormatSpec(const Spec& spec);
 
 // Display-linear to display code values with a power-law display (gamma), in place.
 void EncodeGamma(Image<Float3>& img, double gamma);

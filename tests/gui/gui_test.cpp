@@ -122,10 +122,12 @@ TEST(TonePanel, IsGeneratedFromTheDeclarations) {
 
 // Temporal stability as the studio shows it: a 300-frame scan of the synthetic room under
 // flickering auto exposure, the model view (the fused model's ray cast) tone-mapped with
-// mantiuk08 at each frame's time. The frame-to-frame change of the displayed mean log
-// luminance with the curve's time filter is lower than without it. Measured: 0.60 of it
-// (the goal is a quarter; the rest is the filtered curve still following the model as it
-// grows -- a slow drift the filter passes -- see docs/tonemapping.md).
+// mantiuk08 at each frame's time. With the time filter both the tone curve and the
+// displayed mean log luminance change less from frame to frame (measured: 0.48 and 0.60 of
+// the unfiltered change). The goal of a quarter is not met: the unfiltered curve here does
+// not flicker so much as follow the content (the brightest surface entering or leaving the
+// view moves the whole curve), and a low-pass that lags such moves swings the view further
+// -- see docs/tonemapping.md.
 TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
   sim::SimOptions so;
   so.frames = 300;
@@ -152,6 +154,16 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
     return n ? s / n : 0.0;
   };
   double change_f = 0, change_u = 0, change_c = 0, prev_f = 0, prev_u = 0, prev_c = 0;
+  double curve_f = 0, curve_u = 0;
+  std::vector<double> last_f, last_u;
+  // Mean |change| of the display-linear curve over the nodes the view's luminance spans.
+  auto curve_change = [](const std::vector<double>& now, const std::vector<double>& before) {
+    double s = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < now.size() && i < before.size(); ++i)
+      if (now[i] > 0.001 && now[i] < 0.999) s += std::abs(now[i] - before[i]), ++n;
+    return n ? s / n : 0.0;
+  };
   int counted = 0;
   while (!src.done()) {
     const sim::SimFrame f = src.Next();
@@ -166,14 +178,22 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
     const double mf = mean_log(filtered.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
     const double mu = mean_log(unfiltered.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
     const double mc = mean_log(fixed.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
-    if (f.index >= 2) change_f += std::abs(mf - prev_f), change_u += std::abs(mu - prev_u), change_c += std::abs(mc - prev_c), ++counted;
+    const auto cf = filtered.LastCurve(ToneView::kModel).display, cu = unfiltered.LastCurve(ToneView::kModel).display;
+    if (f.index >= 2) {
+      change_f += std::abs(mf - prev_f), change_u += std::abs(mu - prev_u), change_c += std::abs(mc - prev_c), ++counted;
+      curve_f += curve_change(cf, last_f), curve_u += curve_change(cu, last_u);
+    }
     prev_f = mf, prev_u = mu, prev_c = mc;
+    last_f = cf, last_u = cu;
   }
   ASSERT_GT(counted, 250);
   std::printf("mean |frame-to-frame change| of the model view's mean log10 luminance: %.5f filtered, %.5f unfiltered "
               "(ratio %.3f); %.5f with one fixed curve (the content's own change)\n",
               change_f / counted, change_u / counted, change_f / std::max(1e-12, change_u), change_c / counted);
-  EXPECT_GT(change_u, 0);
+  std::printf("mean |frame-to-frame change| of the tone curve: %.5f filtered, %.5f unfiltered (ratio %.3f)\n",
+              curve_f / counted, curve_u / counted, curve_f / std::max(1e-12, curve_u));
+  EXPECT_GT(curve_u, 0);
+  EXPECT_LE(curve_f, 0.6 * curve_u);
   EXPECT_LE(change_f, 0.75 * change_u);
 }
 

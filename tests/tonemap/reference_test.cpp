@@ -47,7 +47,7 @@ Image<Float3> RunPfs(const std::filesystem::path& in, const std::string& tmo, bo
 
 Image<Float3> Ours(const RadianceImage& hdr, const std::string& op, const Params& set, Operator::Curve* curve = nullptr) {
   const OperatorDecl& d = FindOperator(op);
-  auto o = d.make(ResolveParams(d, set));
+  auto o = d.make(ResolveParams(d, set), Device::kCpu);
   Image<Float3> out;
   o->Map(hdr, out, FrameTime::Still());
   if (curve) *curve = o->LastCurve();

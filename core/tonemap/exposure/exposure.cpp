@@ -21,7 +21,7 @@ OperatorDecl Declaration() {
   d.params = {detail::ExposureParam(),
               {"gamma", "Gamma", ParamDecl::Kind::kReal, 0.2, 5, 1, "", "Extra gamma: above 1 lifts the darks."},
               detail::AutoKeyParam()};
-  d.make = [](const Params& p) {
+  d.make = [](const Params& p, Device) {
     const float inv = float(1 / p.at("gamma"));
     return detail::MakePixelOperator(p.at("auto_key") != 0, p.at("exposure"), 0.18, [inv](Float3 c) {
       auto g = [inv](float v) { return std::pow(std::clamp(v, 0.f, 1.f), inv); };

@@ -11,7 +11,7 @@ OperatorDecl Declaration() {
   d.label = "Linear";
   d.help = "Radiance scaled and clipped at white: what was measured, clipping included.";
   d.params = {detail::ExposureParam(), detail::AutoKeyParam()};
-  d.make = [](const Params& p) {
+  d.make = [](const Params& p, Device) {
     return detail::MakePixelOperator(p.at("auto_key") != 0, p.at("exposure"), 0.18, [](Float3 c) { return c; });
   };
   return d;

@@ -117,6 +117,12 @@ double Dot(const std::vector<float>& a, const std::vector<float>& b) {
   return s;
 }
 
+bool NoData(Float3 c) {
+  return !(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) || (c.x == 0 && c.y == 0 && c.z == 0);
+}
+
+}  // namespace
+
 // Value at quantile q of v (by a fine histogram, linear within a bin).
 float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q) {
   float lo = 1e30f, hi = -1e30f;
@@ -142,11 +148,23 @@ float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& val
   return hi;
 }
 
-bool NoData(Float3 c) {
-  return !(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) || (c.x == 0 && c.y == 0 && c.z == 0);
+std::vector<float> EqualisationCdf(const std::vector<const std::vector<float>*>& gx,
+                                   const std::vector<const std::vector<float>*>& gy, float* top_out) {
+  float top = 0;
+  double total = 0;
+  for (std::size_t l = 0; l < gx.size(); ++l)
+    for (std::size_t i = 0; i < gx[l]->size(); ++i) top = std::max(top, std::hypot((*gx[l])[i], (*gy[l])[i])), total += 1;
+  std::vector<double> cdf(kEqualiseBins + 1, 0.0);
+  const float scale = top > 0 ? kEqualiseBins / top : 0.f;
+  for (std::size_t l = 0; l < gx.size(); ++l)
+    for (std::size_t i = 0; i < gx[l]->size(); ++i)
+      cdf[std::size_t(std::min(kEqualiseBins - 1, int(std::hypot((*gx[l])[i], (*gy[l])[i]) * scale))) + 1] += 1;
+  std::vector<float> out(kEqualiseBins + 1, 0.f);
+  double acc = 0;
+  for (int b = 0; b <= kEqualiseBins; ++b) acc += cdf[std::size_t(b)], out[std::size_t(b)] = float(acc / std::max(1.0, total));
+  *top_out = top;
+  return out;
 }
-
-}  // namespace
 
 const Transducer& DefaultTransducer() {
   static const Transducer t = BuildTransducer();
@@ -209,25 +227,14 @@ Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   } else {
     // Equalisation: each response magnitude goes to the fraction of all (levels, pixels)
     // below it, times the factor -- the histogram of contrasts made flat.
+    std::vector<const std::vector<float>*> gxs, gys;
+    for (const Level& l : lv) gxs.push_back(&l.gx), gys.push_back(&l.gy);
     float top = 0;
-    long total = 0;
-    for (const Level& l : lv)
-      for (std::size_t i = 0; i < l.gx.size(); ++i) top = std::max(top, std::hypot(l.gx[i], l.gy[i])), ++total;
-    constexpr int kBins = 4096;
-    std::vector<double> cdf(kBins + 1, 0.0);
-    const float scale = top > 0 ? kBins / top : 0.f;
-    for (const Level& l : lv)
-      for (std::size_t i = 0; i < l.gx.size(); ++i)
-        cdf[std::size_t(std::min(kBins - 1, int(std::hypot(l.gx[i], l.gy[i]) * scale))) + 1] += 1;
-    for (int b = 1; b <= kBins; ++b) cdf[std::size_t(b)] += cdf[std::size_t(b - 1)];
+    const std::vector<float> cdf = EqualisationCdf(gxs, gys, &top);
+    const float* c = cdf.data();
     for (Level& l : lv)
       for (std::size_t i = 0; i < l.gx.size(); ++i) {
-        const float m = std::hypot(l.gx[i], l.gy[i]);
-        if (!(m > 0)) continue;
-        const float fb = m * scale;
-        const int b = std::min(kBins - 1, int(fb));
-        const double c = (cdf[std::size_t(b)] + (cdf[std::size_t(b + 1)] - cdf[std::size_t(b)]) * (fb - b)) / double(total);
-        const float s = float(factor * c / m);
+        const float s = EqualiseScale(l.gx[i], l.gy[i], c, kEqualiseBins, top, factor);
         l.gx[i] *= s, l.gy[i] *= s;
       }
   }
@@ -283,20 +290,11 @@ Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   // Display: the 0.1 % to 99.9 % range of the result spans the display's 2.3 log10 units.
   const float l_lo = Quantile(x, valid, 0.001), l_hi = Quantile(x, valid, 0.999);
   const float span = std::max(l_hi - l_lo, 1e-6f);
-  constexpr float kDisplayRange = 2.3f;
   const float sat = float(o.saturation);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(n); ++i) {
     const std::size_t k = std::size_t(i);
-    if (!valid[k]) {
-      out[k] = {0, 0, 0};
-      continue;
-    }
-    const float y = std::pow(10.f, (x[k] - l_lo) / span * kDisplayRange - kDisplayRange);
-    const Float3 c = in[k];
-    const float lum = std::max(Luminance(c), clip);
-    auto ch = [&](float v) { return std::clamp(std::pow(std::max(v, clip) / lum, sat) * y, 0.f, 1.f); };
-    out[k] = {ch(c.x), ch(c.y), ch(c.z)};
+    out[k] = valid[k] ? DisplayPixel(in[k], x[k], l_lo, span, clip, sat) : Float3{0, 0, 0};
   }
   return res;
 }

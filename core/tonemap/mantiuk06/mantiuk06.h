@@ -4,6 +4,7 @@
 // keep their visibility while the large luminance differences shrink to fit the display.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "common/image.h"
@@ -36,6 +37,19 @@ struct Result {
 // solver's outcome (a fit that stops at the iteration limit is still usable: reported, not
 // fatal, as for the reference implementation).
 Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o);
+
+// The same on the GPU (CUDA builds; elsewhere throws saying the build has no CUDA backend):
+// the pyramid, the transducer and the conjugate-gradient solve on the device, with the
+// same per-element steps; the two quantiles and the equalisation's histogram on the host.
+Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o);
+
+// Shared by both paths: the value at quantile q of the valid entries (a fine histogram,
+// linear within a bin), and the equalisation's cumulative distribution of response
+// magnitudes (kEqualiseBins + 1 entries, as fractions, over [0, top]).
+float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q);
+constexpr int kEqualiseBins = 4096;
+std::vector<float> EqualisationCdf(const std::vector<const std::vector<float>*>& gx,
+                                   const std::vector<const std::vector<float>*>& gy, float* top);
 
 OperatorDecl Declaration();  // key "mantiuk06"
 Options OptionsFrom(const Params& p);

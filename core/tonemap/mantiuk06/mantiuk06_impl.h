@@ -10,6 +10,7 @@
 
 #include "common/host_device.h"
 #include "common/image_view.h"
+#include "common/vec.h"
 
 namespace hdrf::tonemap::m06 {
 
@@ -99,6 +100,29 @@ HDRF_HD float ToContrast(const Transducer& t, float r) {
     g = t.inverse[i] + (t.inverse[i + 1] - t.inverse[i]) * (f - float(i));
   }
   return r < 0 ? -g : g;
+}
+
+// Equalisation: a response gradient (rx, ry) rescaled so that its magnitude becomes
+// `factor` times the fraction of all magnitudes below it (cdf over [0, top] in `bins`).
+HDRF_HD float EqualiseScale(float rx, float ry, const float* cdf, int bins, float top, float factor) {
+  const float m = sqrtf(rx * rx + ry * ry);
+  if (!(m > 0) || !(top > 0)) return 0.f;
+  const float fb = m * float(bins) / top;
+  const int b = MinInt(bins - 1, int(fb));
+  const float c = cdf[b] + (cdf[b + 1] - cdf[b]) * (fb - float(b));
+  return factor * c / m;
+}
+
+// The display mapping of the solved log luminance x: [lo, hi] onto the top 2.3 log10 units,
+// colour ratios raised to the saturation; display-linear, clamped to [0, 1].
+constexpr float kDisplayRange = 2.3f;
+HDRF_HD Float3 DisplayPixel(Float3 c, float x, float lo, float span, float clip, float sat) {
+  const float y = powf(10.f, (x - lo) / span * kDisplayRange - kDisplayRange);
+  const float lum = fmaxf(Luminance(c), clip);
+  const float v[3] = {c.x, c.y, c.z};
+  float d[3];
+  for (int k = 0; k < 3; ++k) d[k] = fminf(fmaxf(powf(fmaxf(v[k], clip) / lum, sat) * y, 0.f), 1.f);
+  return {d[0], d[1], d[2]};
 }
 
 }  // namespace hdrf::tonemap::m06

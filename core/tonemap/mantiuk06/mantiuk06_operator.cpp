@@ -1,19 +1,27 @@
 // The Mantiuk 2006 operator behind the common Operator interface, with its declaration.
 #include "tonemap/mantiuk06/mantiuk06.h"
 
+#include "common/error.h"
+
 namespace hdrf::tonemap::m06 {
 
 namespace {
 class Mantiuk06 final : public Operator {
  public:
-  explicit Mantiuk06(const Options& o) : o_(o) { o_.Check(); }
+  Mantiuk06(const Options& o, Device device) : o_(o), device_(device) {
+    o_.Check();
+    std::string why;
+    if (device == Device::kCuda && !CudaAvailable(&why)) throw Error("mantiuk06 on CUDA: " + why);
+  }
   void Map(const RadianceImage& in, Image<Float3>& out, FrameTime) override {
-    m06::Map(in, out, o_);
+    last_ = device_ == Device::kCuda ? MapCuda(in, out, o_) : m06::Map(in, out, o_);
     LearnCurve(in, out);
   }
 
  private:
   Options o_;
+  Device device_;
+  Result last_;
 };
 }  // namespace
 
@@ -44,7 +52,9 @@ OperatorDecl Declaration() {
       {"iterations", "Solver iterations", K::kInt, 10, 1000, 200, "", "Most conjugate-gradient iterations per frame."},
   };
   d.local = true;
-  d.make = [](const Params& p) -> std::unique_ptr<Operator> { return std::make_unique<Mantiuk06>(OptionsFrom(p)); };
+  d.make = [](const Params& p, Device dev) -> std::unique_ptr<Operator> {
+    return std::make_unique<Mantiuk06>(OptionsFrom(p), dev);
+  };
   return d;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "common/image.h"
@@ -91,6 +92,26 @@ class CurveFilter {
   bool started_ = false;
   double last_t_ = 0;
   ToneCurve stage1_{}, stage2_{};
+};
+
+// The GPU path (CUDA builds; elsewhere every call throws saying the build has no CUDA
+// backend): the image stays on the GPU between the density and the apply step; the curve is
+// optimised on the host as for the CPU. The counts equal the CPU's (the same per-element
+// steps, no fused multiply-adds) except where log10 rounds differently by one unit in the
+// last place at a bin edge.
+class CudaWorkspace {
+ public:
+  CudaWorkspace();
+  ~CudaWorkspace();
+  CudaWorkspace(const CudaWorkspace&) = delete;
+  CudaWorkspace& operator=(const CudaWorkspace&) = delete;
+  void Upload(const RadianceImage& rgb);
+  Density ComputeDensity(float floor, int bands);
+  void Apply(const CurveLut& lut, Image<Float3>& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // The operator declaration (key "mantiuk08").

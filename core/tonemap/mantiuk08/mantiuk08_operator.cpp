@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/error.h"
 #include "common/parallel.h"
 #include "tonemap/mantiuk08/mantiuk08.h"
 
@@ -16,12 +17,23 @@ bool NoData(Float3 c) {
 
 class Mantiuk08 final : public Operator {
  public:
-  explicit Mantiuk08(const Options& o) : o_(o) { o_.Check(); }
+  Mantiuk08(const Options& o, Device device) : o_(o) {
+    o_.Check();
+    std::string why;
+    if (device == Device::kCuda && !CudaAvailable(&why)) throw Error("mantiuk08 on CUDA: " + why);
+    if (device == Device::kCuda) gpu_ = std::make_unique<CudaWorkspace>();
+  }
 
   void Map(const RadianceImage& in, Image<Float3>& out, FrameTime t) override {
     if (out.width() != in.width() || out.height() != in.height()) out = Image<Float3>(in.width(), in.height());
     const float floor = LuminanceFloor(in);
-    const Density d = ComputeDensity(in, floor, BandCount(o_.ppd));
+    Density d;
+    if (gpu_) {
+      gpu_->Upload(in);
+      d = gpu_->ComputeDensity(floor, BandCount(o_.ppd));
+    } else {
+      d = ComputeDensity(in, floor, BandCount(o_.ppd));
+    }
     bool flat = d.total == 0;
     ToneCurve y{};
     if (!flat) {
@@ -35,6 +47,10 @@ class Mantiuk08 final : public Operator {
     lut_ = MakeLut(y, o_, floor);
     has_lut_ = true;
     curve_ = y;
+    if (gpu_) {
+      gpu_->Apply(lut_, out);
+      return;
+    }
     const CurveLut lut = lut_;
     ImageView<const Float3> src = View(in);
     ImageView<Float3> dst = View(out);
@@ -68,6 +84,7 @@ class Mantiuk08 final : public Operator {
   CurveLut lut_{};
   ToneCurve curve_{};
   bool has_lut_ = false;
+  std::unique_ptr<CudaWorkspace> gpu_;
 };
 
 }  // namespace
@@ -124,7 +141,9 @@ OperatorDecl Declaration() {
       {"crt", "CRT", {{"gamma", 2.2}, {"peak", 80}, {"black", 1}, {"ambient", 60}, {"reflectivity", 0.02}}},
   };
   d.local = false;
-  d.make = [](const Params& p) -> std::unique_ptr<Operator> { return std::make_unique<Mantiuk08>(OptionsFrom(p)); };
+  d.make = [](const Params& p, Device dev) -> std::unique_ptr<Operator> {
+    return std::make_unique<Mantiuk08>(OptionsFrom(p), dev);
+  };
   return d;
 }
 

@@ -12,7 +12,7 @@ OperatorDecl Declaration() {
   d.help = "The photographic operator: the image's log-average luminance maps to the key, then L / (1 + L).";
   d.params = {{"key", "Key", ParamDecl::Kind::kReal, 0.01, 1, 0.18, "", "Display value the log-average luminance maps to."},
               detail::ExposureParam(), detail::AutoKeyParam()};
-  d.make = [](const Params& p) {
+  d.make = [](const Params& p, Device) {
     return detail::MakePixelOperator(p.at("auto_key") != 0, p.at("exposure"), p.at("key"), [](Float3 c) { return ReinhardPixel(c); });
   };
   return d;
