@@ -30,6 +30,11 @@ if [ "${HDRF_GPU_BENCH:-1}" = 1 ]; then
   build-gpu/app/bench/hdrfusion-bench --frames "${HDRF_BENCH_FRAMES:-100}" --device "${HDRF_BENCH_DEVICE:-both}" --voxel "${HDRF_BENCH_VOXEL:-all}" 2>&1 | tee "$out/bench.txt"
   bench=${PIPESTATUS[0]}
 fi
+tonemap=0
+if [ "${HDRF_TONEMAP_BENCH:-1}" = 1 ]; then
+  build-gpu/app/bench/hdrfusion-bench --suite tonemap --frames "${HDRF_TONEMAP_FRAMES:-50}" 2>&1 | tee "$out/bench_tonemap.txt"
+  tonemap=${PIPESTATUS[0]}
+fi
 archs=0
 if [ -n "${HDRF_GPU_ARCHS:-}" ]; then
   # The release architectures (e.g. "75;86;89;90"): the core's CUDA code must compile for each.
@@ -40,9 +45,9 @@ if [ -n "${HDRF_GPU_ARCHS:-}" ]; then
   cuobjdump --list-elf build-gpu-archs/core/libhdrfusion_core.a 2>/dev/null | grep -o "sm_[0-9]*" | sort | uniq -c | tee -a "$out/build_archs.txt"
 fi
 set -e
-echo "gpu_check: all tests rc=$all, gpu tests rc=$gpu, bench rc=$bench, release architectures rc=$archs"
+echo "gpu_check: all tests rc=$all, gpu tests rc=$gpu, bench rc=$bench, tone-mapping bench rc=$tonemap, release architectures rc=$archs"
 if grep -q "\[  SKIPPED \]" "$out/ctest_gpu.txt"; then
   echo "gpu_check: a gpu test was SKIPPED: no usable GPU here" >&2
   exit 3
 fi
-[ "$all" -eq 0 ] && [ "$gpu" -eq 0 ] && [ "$bench" -eq 0 ] && [ "$archs" -eq 0 ]
+[ "$all" -eq 0 ] && [ "$gpu" -eq 0 ] && [ "$bench" -eq 0 ] && [ "$tonemap" -eq 0 ] && [ "$archs" -eq 0 ]
