@@ -53,7 +53,8 @@ int BenchTonemap(int frames, std::vector<std::string> files) {
               "pipeline without the TMO%s\n\n",
               omp_get_max_threads(), gpu ? ", GPU " : " (no GPU rows: ", gpu ? CudaDeviceDescription().c_str() : (why + ")").c_str(),
               frames, pfstmo ? "" : " (pfstmo not installed: no reference column)");
-  std::printf("| image | operator | device | ours ms | ours frames/s | pfstmo ms | speed-up |\n|---|---|---|---|---|---|---|\n");
+  std::printf("| image | operator | device | ours ms | ours frames/s | pfstmo ms | speed-up | mantiuk06 iterations |\n"
+              "|---|---|---|---|---|---|---|---|\n");
   std::vector<Device> devices = {Device::kCpu};
   if (gpu) devices.push_back(Device::kCuda);
   for (const auto& file : files) {
@@ -64,7 +65,7 @@ int BenchTonemap(int frames, std::vector<std::string> files) {
     if (pfstmo) {
       const std::string in = "pfsinexr '" + vga.string() + "' | ", out = " | pfsoutexr " + (tmp / "o.exr").string() + " 2>/dev/null";
       const double t_io = Seconds(in + "cat" + out);
-      for (const auto& [op, tmo] : {std::pair<std::string, std::string>{"mantiuk08", "pfstmo_mantiuk08 -q"},
+      for (const auto& [op, tmo] : {std::pair<std::string, std::string>{"mantiuk08", "pfstmo_mantiuk08 -q 2>/dev/null"},
                                     {"mantiuk06", "pfstmo_mantiuk06 -f 0.1 -s 0.8 2>/dev/null"}}) {
         const double t = Seconds(in + tmo + out);
         if (t > 0 && t_io > 0) ref[op] = 1000 * std::max(0.0, t - t_io);
@@ -73,11 +74,13 @@ int BenchTonemap(int frames, std::vector<std::string> files) {
     const std::string name = fs::path(file).filename().string();
     for (const auto& r : bench::RunTonemapBench({{name, &img}}, frames, devices)) {
       const auto it = ref.find(r.op);
+      const std::string iters = r.op == "mantiuk06" ? std::to_string(r.iterations) : "";
       if (it != ref.end())
-        std::printf("| %s | %s | %s | %.2f | %.1f | %.0f | %.1fx |\n", name.c_str(), r.op.c_str(), DeviceName(r.device), r.ms,
-                    1000 / r.ms, it->second, it->second / r.ms);
+        std::printf("| %s | %s | %s | %.2f | %.1f | %.0f | %.1fx | %s |\n", name.c_str(), r.op.c_str(), DeviceName(r.device),
+                    r.ms, 1000 / r.ms, it->second, it->second / r.ms, iters.c_str());
       else
-        std::printf("| %s | %s | %s | %.2f | %.1f | - | - |\n", name.c_str(), r.op.c_str(), DeviceName(r.device), r.ms, 1000 / r.ms);
+        std::printf("| %s | %s | %s | %.2f | %.1f | - | - | %s |\n", name.c_str(), r.op.c_str(), DeviceName(r.device), r.ms,
+                    1000 / r.ms, iters.c_str());
       std::fflush(stdout);
     }
   }

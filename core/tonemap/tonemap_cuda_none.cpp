@@ -16,6 +16,10 @@ void CudaWorkspace::Apply(const CurveLut&, Image<Float3>&) { ThrowNoCudaBackend(
 
 namespace m06 {
 Result MapCuda(const RadianceImage&, Image<Float3>&, const Options&) { ThrowNoCudaBackend(); }
+struct CudaWorkspace::Impl {};
+CudaWorkspace::CudaWorkspace() { ThrowNoCudaBackend(); }
+CudaWorkspace::~CudaWorkspace() = default;
+Result CudaWorkspace::Map(const RadianceImage&, Image<Float3>&, const Options&) { ThrowNoCudaBackend(); }
 }  // namespace m06
 
 }  // namespace hdrf::tonemap

@@ -124,28 +124,36 @@ bool NoData(Float3 c) {
 }  // namespace
 
 // Value at quantile q of v (by a fine histogram, linear within a bin).
-float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q) {
+void Quantiles(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q_lo, double q_hi, float* out_lo,
+               float* out_hi) {
   float lo = 1e30f, hi = -1e30f;
   long n = 0;
   for (std::size_t i = 0; i < v.size(); ++i)
     if (valid[i]) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]), ++n;
-  if (n == 0 || hi <= lo) return lo;
+  *out_lo = lo, *out_hi = hi;
+  if (n == 0 || hi <= lo) return;
   constexpr int kBins = 16384;
   std::vector<long> hist(kBins, 0);
   const double scale = kBins / double(hi - lo);
   for (std::size_t i = 0; i < v.size(); ++i)
     if (valid[i]) ++hist[std::size_t(std::clamp(int((v[i] - lo) * scale), 0, kBins - 1))];
-  const double target = q * double(n);
-  double acc = 0;
-  for (int b = 0; b < kBins; ++b) {
-    const double next = acc + double(hist[std::size_t(b)]);
-    if (next >= target && hist[std::size_t(b)] > 0) {
-      const double f = (target - acc) / double(hist[std::size_t(b)]);
-      return float(lo + (b + f) / scale);
+  auto at = [&](double q) {
+    const double target = q * double(n);
+    double acc = 0;
+    for (int b = 0; b < kBins; ++b) {
+      const double next = acc + double(hist[std::size_t(b)]);
+      if (next >= target && hist[std::size_t(b)] > 0) return float(lo + (b + (target - acc) / double(hist[std::size_t(b)])) / scale);
+      acc = next;
     }
-    acc = next;
-  }
-  return hi;
+    return hi;
+  };
+  *out_lo = at(q_lo), *out_hi = at(q_hi);
+}
+
+float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q) {
+  float a = 0, b = 0;
+  Quantiles(v, valid, q, q, &a, &b);
+  return a;
 }
 
 std::vector<float> EqualisationCdf(const std::vector<const std::vector<float>*>& gx,
@@ -288,7 +296,8 @@ Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   res.converged = rr / bb <= tol2;
 
   // Display: the 0.1 % to 99.9 % range of the result spans the display's 2.3 log10 units.
-  const float l_lo = Quantile(x, valid, 0.001), l_hi = Quantile(x, valid, 0.999);
+  float l_lo = 0, l_hi = 0;
+  Quantiles(x, valid, 0.001, 0.999, &l_lo, &l_hi);
   const float span = std::max(l_hi - l_lo, 1e-6f);
   const float sat = float(o.saturation);
 #pragma omp parallel for schedule(static)

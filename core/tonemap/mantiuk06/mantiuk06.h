@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "common/image.h"
@@ -42,11 +43,27 @@ Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o);
 // the pyramid, the transducer and the conjugate-gradient solve on the device, with the
 // same per-element steps; the two quantiles and the equalisation's histogram on the host.
 Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o);
+// The same, keeping the device buffers between frames (for video).
+class CudaWorkspace {
+ public:
+  CudaWorkspace();
+  ~CudaWorkspace();
+  CudaWorkspace(const CudaWorkspace&) = delete;
+  CudaWorkspace& operator=(const CudaWorkspace&) = delete;
+  Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Shared by both paths: the value at quantile q of the valid entries (a fine histogram,
 // linear within a bin), and the equalisation's cumulative distribution of response
 // magnitudes (kEqualiseBins + 1 entries, as fractions, over [0, top]).
 float Quantile(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q);
+// Two quantiles from one histogram.
+void Quantiles(const std::vector<float>& v, const std::vector<std::uint8_t>& valid, double q_lo, double q_hi, float* lo,
+               float* hi);
 constexpr int kEqualiseBins = 4096;
 std::vector<float> EqualisationCdf(const std::vector<const std::vector<float>*>& gx,
                                    const std::vector<const std::vector<float>*>& gy, float* top);

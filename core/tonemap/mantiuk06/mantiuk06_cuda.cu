@@ -97,7 +97,36 @@ class Solver {
 
 }  // namespace
 
+// Everything a frame needs on the device, kept between frames of one size (allocations
+// cost more than the solve at video rates).
+struct CudaWorkspace::Impl {
+  int w = 0, h = 0;
+  std::unique_ptr<Solver> solver;
+  DeviceBuffer<Float3> rgb, out;
+  DeviceBuffer<float> log_lum, x, r, p, ap, best, b;
+  DeviceBuffer<unsigned char> valid;
+  DeviceBuffer<Transducer> tr;
+  void Resize(int nw, int nh) {
+    if (nw == w && nh == h) return;
+    w = nw, h = nh;
+    const std::size_t n = std::size_t(w) * std::size_t(h);
+    solver = std::make_unique<Solver>(w, h);
+    rgb = DeviceBuffer<Float3>(n), out = DeviceBuffer<Float3>(n);
+    for (auto* v : {&log_lum, &x, &r, &p, &ap, &best, &b}) *v = DeviceBuffer<float>(n);
+    valid = DeviceBuffer<unsigned char>(n);
+    if (tr.size() == 0) tr.Upload(&DefaultTransducer(), 1);
+  }
+};
+
+CudaWorkspace::CudaWorkspace() : impl_(std::make_unique<Impl>()) {}
+CudaWorkspace::~CudaWorkspace() = default;
+
 Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o) {
+  CudaWorkspace ws;
+  return ws.Map(in, out, o);
+}
+
+Result CudaWorkspace::Map(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   o.Check();
   const int w = in.width(), h = in.height();
   if (out.width() != w || out.height() != h) out = Image<Float3>(w, h);
@@ -112,12 +141,14 @@ Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   }
   if (!(y_max > 0) || w < 3 || h < 3) return Map(in, out, o);  // nothing to solve: the CPU's answer
   const float clip = 1e-7f * y_max;
-  DeviceBuffer<Float3> rgb;
-  rgb.Upload(in.data(), in.size());
+  Impl& m = *impl_;
+  m.Resize(w, h);
   const std::size_t count = std::size_t(n);
-  DeviceBuffer<float> log_lum(count), x(count), r(count), p(count), ap(count), best(count), b(count);
-  DeviceBuffer<unsigned char> valid(count);
-  Solver solver(w, h);
+  m.rgb.Upload(in.data(), count);
+  DeviceBuffer<Float3>& rgb = m.rgb;
+  DeviceBuffer<float>&log_lum = m.log_lum, &x = m.x, &r = m.r, &p = m.p, &ap = m.ap, &best = m.best, &b = m.b;
+  DeviceBuffer<unsigned char>& valid = m.valid;
+  Solver& solver = *m.solver;
   {
     const Float3* c = rgb.data();
     float* ll = log_lum.data();
@@ -138,9 +169,7 @@ Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   auto& lv = solver.levels();
   HDRF_CUDA_CHECK(cudaMemcpy(lv[0].value.data(), log_lum.data(), sizeof(float) * std::size_t(n), cudaMemcpyDeviceToDevice));
   solver.DownsampleChain();
-  DeviceBuffer<Transducer> tr;
-  tr.Upload(&DefaultTransducer(), 1);
-  const Transducer* trp = tr.data();
+  const Transducer* trp = m.tr.data();
   const float detail = float(o.detail), factor = float(o.contrast);
   for (DevLevel& l : lv) {
     const ImageView<const float> v = l.C(l.value);
@@ -235,10 +264,11 @@ Result MapCuda(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   std::vector<std::uint8_t> hv(count);
   x.Download(hx.data());
   valid.Download(hv.data());
-  const float l_lo = Quantile(hx, hv, 0.001), l_hi = Quantile(hx, hv, 0.999);
+  float l_lo = 0, l_hi = 0;
+  Quantiles(hx, hv, 0.001, 0.999, &l_lo, &l_hi);
   const float span = std::max(l_hi - l_lo, 1e-6f);
   const float sat = float(o.saturation);
-  DeviceBuffer<Float3> d_out(count);
+  DeviceBuffer<Float3>& d_out = m.out;
   {
     const Float3* c = rgb.data();
     const float* xs = x.data();

@@ -12,9 +12,10 @@ class Mantiuk06 final : public Operator {
     o_.Check();
     std::string why;
     if (device == Device::kCuda && !CudaAvailable(&why)) throw Error("mantiuk06 on CUDA: " + why);
+    if (device == Device::kCuda) gpu_ = std::make_unique<CudaWorkspace>();
   }
   void Map(const RadianceImage& in, Image<Float3>& out, FrameTime) override {
-    last_ = device_ == Device::kCuda ? MapCuda(in, out, o_) : m06::Map(in, out, o_);
+    last_ = gpu_ ? gpu_->Map(in, out, o_) : m06::Map(in, out, o_);
     LearnCurve(in, out);
   }
 
@@ -22,6 +23,7 @@ class Mantiuk06 final : public Operator {
   Options o_;
   Device device_;
   Result last_;
+  std::unique_ptr<CudaWorkspace> gpu_;
 };
 }  // namespace
 
