@@ -119,7 +119,56 @@ TEST_P(PfstmoImages, Mantiuk06MatchesTheReferenceImage) {
   const double ssim_eq = LumaSsim(Ours(hdr, "mantiuk06", {{"contrast", 0.5}, {"equalise", 1}, {"saturation", 0.8}}), ref_eq);
   std::printf("%s mantiuk06: SSIM of luminance %.4f (mapping), %.4f (equalisation)\n", GetParam().c_str(), ssim, ssim_eq);
   EXPECT_GE(ssim, 0.95);
-  (void)ssim_eq;
+  // Equalisation differs by design: the reference divides by the magnitude of every
+  // gradient, so each exactly flat one becomes NaN and then the largest contrast of its
+  // table (10^4 : 1) in the fit; ours leaves flat gradients flat. Measured 0.78 to 0.94
+  // (docs/tonemapping.md); with the reference's behaviour imitated, 0.986 to 0.994 on three
+  // of the four images.
+  EXPECT_GE(ssim_eq, 0.75);
+}
+
+// A fused model render: 40 frames of the synthetic room scanned, the model ray cast from the
+// last pose (its radiance in model units; pixels without a surface are zero: no data, black
+// in both).
+TEST(PfstmoModelRender, BothOperatorsMatchTheReference) {
+  HDRF_SKIP_WITHOUT_PFSTMO();
+  sim::SimOptions so;
+  so.frames = 40;
+  sim::SyntheticSource src(so);
+  pipeline::PipelineOptions po;
+  po.volume.resolution = 128;
+  pipeline::ScanSession session(po, sim::SimCamera(so.width, so.height), src.sensor());
+  while (!src.done()) {
+    const sim::SimFrame f = src.Next();
+    pipeline::FrameInput in;
+    in.color = f.color.Clone();
+    in.depth_m = test::Metres(f.depth);
+    in.timestamp = f.timestamp;
+    session.Process(in);
+  }
+  RadianceImage render = session.pipeline().DownloadViews().render.radiance.Clone();
+  // Where the ray cast finds no surface the render is zero. Ours treats that as no data;
+  // the reference as a luminance 10^7 below the brightest pixel, a contrast that dominates
+  // its result. So both are given the render with its holes filled by the mean colour of
+  // the surfaces (the operators compared on the model, not on what no data means).
+  Float3 mean{0, 0, 0};
+  std::size_t holes = 0;
+  for (std::size_t i = 0; i < render.size(); ++i)
+    if (Luminance(render[i]) > 0) mean += render[i];
+    else ++holes;
+  mean = mean / float(render.size() - holes);
+  for (std::size_t i = 0; i < render.size(); ++i)
+    if (!(Luminance(render[i]) > 0)) render[i] = mean;
+  std::printf("render: %.1f %% of pixels without a surface, filled\n", 100.0 * double(holes) / double(render.size()));
+  test::TempDir tmp;
+  io::WriteExr(tmp / "render.exr", render, io::ExrPrecision::kFloat);
+  const RadianceImage hdr = io::ReadExr(tmp / "render.exr");
+  const double s08 = LumaSsim(Ours(hdr, "mantiuk08", {}), RunPfs(tmp / "render.exr", "pfstmo_mantiuk08 -q 2>/dev/null", false, tmp / "r08.exr"));
+  const double s06 = LumaSsim(Ours(hdr, "mantiuk06", {{"contrast", 0.1}, {"saturation", 0.8}}),
+                              RunPfs(tmp / "render.exr", "pfstmo_mantiuk06 -f 0.1 -s 0.8 2>/dev/null", true, tmp / "r06.exr"));
+  std::printf("fused model render (%dx%d): SSIM of luminance mantiuk08 %.4f, mantiuk06 %.4f\n", hdr.width(), hdr.height(), s08, s06);
+  EXPECT_GE(s08, 0.95);
+  EXPECT_GE(s06, 0.95);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, PfstmoImages,
