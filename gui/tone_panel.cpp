@@ -32,7 +32,7 @@ TonePanel::TonePanel(QWidget* parent) : QWidget(parent) {
   layout->addLayout(top);
   help_ = new QLabel;
   help_->setWordWrap(true);
-  help_->setStyleSheet("color: palette(mid);");
+  help_->setStyleSheet("font-style: italic;");
   layout->addWidget(help_);
   editors_ = new QWidget;
   form_ = new QFormLayout(editors_);
