@@ -157,7 +157,14 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
     return n ? s / n : 0.0;
   };
   double change_f = 0, change_u = 0, change_c = 0, prev_f = 0, prev_u = 0, prev_c = 0;
-  double curve_f = 0, curve_u = 0;
+  double curve_f = 0, curve_u = 0, mesh_f = 0, mesh_u = 0, prev_mf = 0, prev_mu = 0;
+  int mesh_counted = 0;
+  std::vector<Float3> model;  // the model's vertex radiance after 30 frames: a fixed set to colour
+  auto mean_log_colours = [](const std::vector<Rgb8>& c) {
+    double s = 0;
+    for (const Rgb8& v : c) s += std::log10((0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b + 1) / 256.0);
+    return c.empty() ? 0.0 : s / double(c.size());
+  };
   std::vector<double> last_f, last_u;
   // Mean |change| of the display-linear curve over the nodes the view's luminance spans.
   auto curve_change = [](const std::vector<double>& now, const std::vector<double>& before) {
@@ -182,6 +189,12 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
     const double mu = mean_log(unfiltered.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
     const double mc = mean_log(fixed.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
     const auto cf = filtered.LastCurve(ToneView::kModel).display, cu = unfiltered.LastCurve(ToneView::kModel).display;
+    if (f.index == 30) model = session.pipeline().ExtractMesh().radiance;
+    if (!model.empty()) {
+      const double a = mean_log_colours(filtered.MapColours(model)), b = mean_log_colours(unfiltered.MapColours(model));
+      if (f.index > 31) mesh_f += std::abs(a - prev_mf), mesh_u += std::abs(b - prev_mu), ++mesh_counted;
+      prev_mf = a, prev_mu = b;
+    }
     if (f.index >= 2) {
       change_f += std::abs(mf - prev_f), change_u += std::abs(mu - prev_u), change_c += std::abs(mc - prev_c), ++counted;
       curve_f += curve_change(cf, last_f), curve_u += curve_change(cu, last_u);
@@ -195,6 +208,9 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
               change_f / counted, change_u / counted, change_f / std::max(1e-12, change_u), change_c / counted);
   std::printf("mean |frame-to-frame change| of the tone curve: %.5f filtered, %.5f unfiltered (ratio %.3f)\n",
               curve_f / counted, curve_u / counted, curve_f / std::max(1e-12, curve_u));
+  std::printf("mean |frame-to-frame change| of the model's mean log10 luminance as coloured (fixed vertices): %.5f filtered, "
+              "%.5f unfiltered (ratio %.3f)\n",
+              mesh_f / mesh_counted, mesh_u / mesh_counted, mesh_f / std::max(1e-12, mesh_u));
   EXPECT_GT(curve_u, 0);
   EXPECT_LE(curve_f, 0.6 * curve_u);
   EXPECT_LE(change_f, 0.75 * change_u);

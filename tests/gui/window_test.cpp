@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <QComboBox>
 #include <QApplication>
 #include <QDockWidget>
 #include <QFile>
@@ -113,6 +114,31 @@ TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
   w2.show();
   EXPECT_FALSE(w2.dock("nr")->isVisible());
   EXPECT_TRUE(w2.dock("depth")->isVisible());
+}
+
+// Switching the tone-mapping operator while scanning redraws the views with the new operator
+// and the scan goes on (it runs on its own thread; only the views' mapping changes).
+TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  StudioOptions o;
+  o.source = "synthetic:frames=90,size=160x120,ae=flicker";
+  o.frames = 90;
+  o.autostart = true;
+  MainWindow w(o);
+  w.resize(1400, 900);
+  w.show();
+  QTRY_VERIFY_WITH_TIMEOUT(w.frames_shown() > 3 && w.view("model_radiance")->DistinctLevels() > 8, 120000);
+  auto* op = w.findChild<QComboBox*>("tone_operator");
+  ASSERT_NE(op, nullptr);
+  for (const char* key : {"mantiuk06", "reinhard", "mantiuk08"}) {
+    const int before = w.frames_shown();
+    op->setCurrentIndex(op->findData(key));
+    QTRY_VERIFY_WITH_TIMEOUT(w.frames_shown() > before + 3, 120000);
+    EXPECT_GT(w.view("model_radiance")->DistinctLevels(), 8) << key;
+    EXPECT_GT(w.view("radiance")->DistinctLevels(), 8) << key;
+  }
+  EXPECT_FALSE(w.health_text().contains("lost", Qt::CaseInsensitive));
 }
 
 TEST(StudioWindow, ASourceErrorShowsAMessage) {
