@@ -31,6 +31,7 @@
 #include "pipeline/scan_session.h"
 #include "sim/sensor_model.h"
 #include "sim/synthetic_source.h"
+#include "support/sim_frames.h"
 #include "support/test_support.h"
 
 namespace hdrf::gui {
@@ -177,12 +178,7 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
   int counted = 0;
   while (!src.done()) {
     const sim::SimFrame f = src.Next();
-    pipeline::FrameInput in;
-    in.color = f.color.Clone();
-    in.depth_m = DepthImage(f.depth.width(), f.depth.height());
-    for (std::size_t i = 0; i < f.depth.size(); ++i) in.depth_m[i] = float(f.depth[i] / so.depth_scale);
-    in.timestamp = f.timestamp;
-    session.Process(in);
+    session.Process(test::AsInput(f));
     const auto views = session.pipeline().DownloadViews();
     if (views.render.radiance.empty()) continue;
     const double mf = mean_log(filtered.Map(views.render.radiance, ToneView::kModel, f.timestamp), views.render.radiance);
@@ -229,12 +225,7 @@ TEST(TonePanel, BothMantiukOperatorsOnTheFusedModel) {
   pipeline::ScanSession session(po, sim::SimCamera(so.width, so.height), src.sensor());
   while (!src.done()) {
     const sim::SimFrame f = src.Next();
-    pipeline::FrameInput in;
-    in.color = f.color.Clone();
-    in.depth_m = DepthImage(f.depth.width(), f.depth.height());
-    for (std::size_t i = 0; i < f.depth.size(); ++i) in.depth_m[i] = float(f.depth[i] / so.depth_scale);
-    in.timestamp = f.timestamp;
-    session.Process(in);
+    session.Process(test::AsInput(f));
   }
   const RadianceImage render = session.pipeline().DownloadViews().render.radiance.Clone();
   QWidget figure;

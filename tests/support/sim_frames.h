@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/image.h"
+#include "pipeline/pipeline.h"
 #include "sim/synthetic_source.h"
 
 namespace hdrf::test {
@@ -34,6 +35,15 @@ inline DepthImage Metres(const DepthRawImage& raw) {
   DepthImage d(raw.width(), raw.height());
   for (std::size_t i = 0; i < raw.size(); ++i) d[i] = raw[i] / 5000.f;
   return d;
+}
+
+// A simulated frame as the engine takes it (colour, depth in metres, time).
+inline pipeline::FrameInput AsInput(const sim::SimFrame& f) {
+  pipeline::FrameInput in;
+  in.color = f.color.Clone();
+  in.depth_m = Metres(f.depth);
+  in.timestamp = f.timestamp;
+  return in;
 }
 
 }  // namespace hdrf::test

@@ -139,12 +139,7 @@ TEST(PfstmoModelRender, BothOperatorsMatchTheReference) {
   po.volume.resolution = 128;
   pipeline::ScanSession session(po, sim::SimCamera(so.width, so.height), src.sensor());
   while (!src.done()) {
-    const sim::SimFrame f = src.Next();
-    pipeline::FrameInput in;
-    in.color = f.color.Clone();
-    in.depth_m = test::Metres(f.depth);
-    in.timestamp = f.timestamp;
-    session.Process(in);
+    session.Process(test::AsInput(src.Next()));
   }
   RadianceImage render = session.pipeline().DownloadViews().render.radiance.Clone();
   // Where the ray cast finds no surface the render is zero. Ours treats that as no data;
