@@ -344,3 +344,58 @@ TEST(Cli, CalibrateRefusesASweepWithoutExposures) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// hdrfusion tonemap: every declared operator by key, parameters by key, PNG (display-encoded)
+// or EXR (display-linear) out, the curve of a global operator; bad input refused, naming it.
+TEST(Cli, TonemapEveryOperatorAndItsErrors) {
+  test::TempDir dir;
+  RadianceImage hdr(48, 32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 48; ++x) hdr(x, y) = Float3{1.f, 0.8f, 0.6f} * std::pow(10.f, float(x) / 12.f - 2);
+  io::WriteExr(dir / "in.exr", hdr, io::ExrPrecision::kFloat);
+  const std::string in = (dir / "in.exr").string();
+  RunResult r = RunCli("tonemap --list");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* k : {"mantiuk08", "mantiuk06", "reinhard", "exposure", "linear", "preset=lcd_office", "temporal_hz"})
+    EXPECT_NE(r.output.find(k), std::string::npos) << k;
+  for (const char* op : {"mantiuk08", "mantiuk06", "reinhard", "exposure", "linear"}) {
+    r = RunCli("tonemap " + in + " --op " + op + " --out " + (dir / (std::string(op) + ".png")).string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    const ColorImage png = io::ReadColorImage(dir / (std::string(op) + ".png"));
+    EXPECT_LT(png(2, 16).g, png(45, 16).g) << op;  // brighter stays brighter
+  }
+  r = RunCli("tonemap " + in + " --op mantiuk08 --set preset=crt --set contrast=1.2 --out " + (dir / "o.exr").string() +
+             " --curve " + (dir / "curve.txt").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const RadianceImage lin = io::ReadExr(dir / "o.exr");
+  EXPECT_GE(lin(0, 0).x, 0.f);
+  EXPECT_LE(lin(47, 0).x, 1.f);
+  EXPECT_NE(test::ReadText(dir / "curve.txt").find("log10_luminance display_linear"), std::string::npos);
+  // Refusals, each naming what is wrong.
+  r = RunCli("tonemap " + in + " --op mantiuk08 --set peak=5 --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("[10, 10000]"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + in + " --op mantiuk08 --set gama=2 --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("gama"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + in + " --op durand --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("mantiuk08"), std::string::npos) << r.output;  // lists the known ones
+  r = RunCli("tonemap " + in + " --op mantiuk06 --curve " + (dir / "c.txt").string() + " --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("local operator"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + in + " --out " + (dir / "x.jpg").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find(".png or .exr"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + (dir / "missing.exr").string() + " --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("missing.exr"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace
+}  // namespace hdrf
