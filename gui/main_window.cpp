@@ -106,6 +106,8 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   if (!o.source.isEmpty()) source_->setCurrentText(o.source);
   if (source_->currentText().startsWith("openni:")) ShowCameraPanel();
   if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
+  // The Mantiuk operators run where the engine does (CUDA falls back to the CPU; set with
+  // the engine settings in ApplyEngineSettings).
   if (!o.tone.isEmpty()) {
     // "mantiuk06,contrast=0.2": the operator, then parameters as on the CLI's --set.
     const tonemap::Spec spec = tonemap::ParseSpec(o.tone.toStdString());  // throws, naming what is wrong
@@ -423,6 +425,8 @@ void MainWindow::ApplyEngineSettings() {
   error_->hide();
   try {
     emit configure(CurrentSettings());
+    tone_->SetDevice(engine_->Value("device") == "cuda" ? Device::kCuda : Device::kCpu);
+    shown_.reset();
   } catch (const Error& e) {
     OnFailed(tr("Engine settings: %1").arg(QString::fromStdString(e.what())));
   }
