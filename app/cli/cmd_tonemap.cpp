@@ -60,8 +60,8 @@ Command AddTonemapCommand(CLI::App& app) {
                                          "(the operator's display gamma, 2.2 where it has none)")
       ->check(CLI::IsMember({"ocio", "gamma"}));
   cmd->add_option("--ocio-config", a->ocio_config, "OpenColorIO config file (default: the built-in sRGB config)");
-  cmd->add_option("--display", a->display, "OpenColorIO display (default: the config's)");
-  cmd->add_option("--view", a->view, "OpenColorIO view (default: the display's)");
+  cmd->add_option("--display", a->display, "OpenColorIO display (default: the config's; the built-in one has sRGB)");
+  cmd->add_option("--view", a->view, "OpenColorIO view (default: the display's; the built-in sRGB has Standard and Raw)");
   cmd->add_option("--device", a->device, "cpu or cuda (the Mantiuk operators run on the GPU)")
       ->check(CLI::IsMember({"cpu", "cuda"}));
   cmd->add_flag("--list", a->list, "List the operators and their parameters, then exit");
@@ -81,7 +81,7 @@ Command AddTonemapCommand(CLI::App& app) {
     const tonemap::Params params = tonemap::ResolveParams(decl, values);
     std::unique_ptr<io::OcioDisplay> ocio;
     if (ext == ".png" && a->encode == "ocio")
-      ocio = a->ocio_config.empty() ? std::make_unique<io::OcioDisplay>()
+      ocio = a->ocio_config.empty() ? std::make_unique<io::OcioDisplay>(a->display, a->view)
                                     : std::make_unique<io::OcioDisplay>(a->ocio_config, a->display, a->view);
     const RadianceImage hdr = io::ReadExr(a->in);
     Device device = a->device == "cuda" ? Device::kCuda : Device::kCpu;

@@ -39,14 +39,14 @@ struct OcioDisplay::Impl {
   }
 };
 
-OcioDisplay::OcioDisplay() : impl_(std::make_unique<Impl>()) {
+OcioDisplay::OcioDisplay(const std::string& display, const std::string& view) : impl_(std::make_unique<Impl>()) {
   std::istringstream in(BuiltinOcioConfig());
   try {
     impl_->config = OCIO::Config::CreateFromStream(in);
   } catch (const OCIO::Exception& e) {
     throw Error(std::string("built-in OpenColorIO config: ") + e.what());
   }
-  impl_->Init("built-in OpenColorIO config", "", "");
+  impl_->Init("built-in OpenColorIO config", display, view);
 }
 
 OcioDisplay::OcioDisplay(const std::filesystem::path& file, const std::string& display, const std::string& view)

@@ -16,8 +16,9 @@ const char* BuiltinOcioConfig();
 
 class OcioDisplay {
  public:
-  // The built-in config, its default display and view.
-  OcioDisplay();
+  // The built-in config with a display and view (empty: its defaults; throws Error naming
+  // the display or view it lacks).
+  explicit OcioDisplay(const std::string& display = "", const std::string& view = "");
   // A config file; empty display/view take the config's defaults. Throws InputError naming
   // the file (unreadable, invalid, or without the display or view asked for).
   explicit OcioDisplay(const std::filesystem::path& config, const std::string& display = "",

@@ -388,6 +388,12 @@ TEST(Cli, TonemapEveryOperatorAndItsErrors) {
   r = RunCli("tonemap " + in + " --op mantiuk06 --curve " + (dir / "c.txt").string() + " --out " + (dir / "x.png").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("local operator"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + in + " --view Filmic --out " + (dir / "x.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("Filmic"), std::string::npos) << r.output;
+  r = RunCli("tonemap " + in + " --op linear --view Raw --out " + (dir / "raw.png").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("sRGB / Raw"), std::string::npos) << r.output;
   r = RunCli("tonemap " + in + " --out " + (dir / "x.jpg").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find(".png or .exr"), std::string::npos) << r.output;
