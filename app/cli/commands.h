@@ -17,5 +17,6 @@ Command AddSensorsCommand(CLI::App& app);
 Command AddRecordCommand(CLI::App& app);
 Command AddCaptureSweepCommand(CLI::App& app);
 Command AddTonemapCommand(CLI::App& app);
+Command AddExportCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

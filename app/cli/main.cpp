@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
       hdrf::cli::AddRecordCommand(app),
       hdrf::cli::AddCaptureSweepCommand(app),
       hdrf::cli::AddTonemapCommand(app),
+      hdrf::cli::AddExportCommand(app),
       hdrf::cli::AddBenchCommand(app),
   };
   return hdrf::cli::Run(app, commands, argc, argv);

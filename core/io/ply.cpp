@@ -14,9 +14,14 @@ namespace {
 const char* kVertexProps[] = {"float x", "float y", "float z", "float nx", "float ny", "float nz",
                               "uchar red", "uchar green", "uchar blue", "float radiance_r",
                               "float radiance_g", "float radiance_b"};
+const char* kFlagProp = "uchar radiance_filled";
 }
 
-void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std::vector<Rgb8>* given) {
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std::vector<Rgb8>* given,
+              const std::vector<std::uint8_t>* flags) {
+  if (flags && flags->size() != m.position.size())
+    throw Error(file.string() + ": " + std::to_string(flags->size()) + " radiance flags for " +
+                std::to_string(m.position.size()) + " vertices");
   // Display colours: the given ones, or one Reinhard scale over all vertices with radiance.
   if (given && given->size() != m.position.size())
     throw Error(file.string() + ": " + std::to_string(given->size()) + " display colours for " +
@@ -33,6 +38,7 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
        "radiance_r/g/b (model units), display colour tone-mapped\n"
     << "element vertex " << m.position.size() << "\n";
   for (const char* p : kVertexProps) h << "property " << p << "\n";
+  if (flags) h << "property " << kFlagProp << "\n";
   h << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
   const auto tmp = TemporarySibling(file);
   {
@@ -51,6 +57,7 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
       const Rgb8 c = display.empty() ? Rgb8{0, 0, 0} : display[i];
       put(&c, 3);
       put(&m.radiance[i], 12);
+      if (flags) put(&(*flags)[i], 1);
     }
     for (const auto& t : m.triangles) {
       const std::uint8_t three = 3;
@@ -68,7 +75,7 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
   CommitTemporary(tmp, file);
 }
 
-mesh::Mesh ReadPly(const std::filesystem::path& file) {
+mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>* flags_out) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
   std::string line;
@@ -88,22 +95,25 @@ mesh::Mesh ReadPly(const std::filesystem::path& file) {
       nf = std::stoull(line.substr(13));
       in_vertex = false;
     } else if (in_vertex && line.rfind("property ", 0) == 0) {
-      if (prop >= 12 || line.substr(9) != kVertexProps[prop])
+      if (prop > 12 || (prop < 12 && line.substr(9) != kVertexProps[prop]) || (prop == 12 && line.substr(9) != kFlagProp))
         throw InputError(file, line_no, "unexpected vertex property '" + line.substr(9) + "'");
       ++prop;
     }
   }
-  if (prop != 12) throw InputError(file, "vertex properties do not follow the HDR PLY layout (docs/formats.md)");
+  if (prop != 12 && prop != 13) throw InputError(file, "vertex properties do not follow the HDR PLY layout (docs/formats.md)");
   mesh::Mesh m;
   m.position.resize(nv);
   m.normal.resize(nv);
   m.radiance.resize(nv);
+  const std::size_t record = prop == 13 ? 40 : 39;
+  if (flags_out) flags_out->assign(nv, 0);
   for (std::size_t i = 0; i < nv; ++i) {
-    char rec[39];
-    if (!in.read(rec, 39)) throw InputError(file, "truncated vertex data at vertex " + std::to_string(i));
+    char rec[40];
+    if (!in.read(rec, std::streamsize(record))) throw InputError(file, "truncated vertex data at vertex " + std::to_string(i));
     std::memcpy(&m.position[i], rec, 12);
     std::memcpy(&m.normal[i], rec + 12, 12);
     std::memcpy(&m.radiance[i], rec + 27, 12);
+    if (flags_out && record == 40) (*flags_out)[i] = std::uint8_t(rec[39]);
   }
   m.triangles.resize(nf);
   for (std::size_t i = 0; i < nf; ++i) {

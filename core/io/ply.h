@@ -12,10 +12,15 @@ namespace hdrf::io {
 // Display colours are `display` (one per vertex, from a chosen tone-mapping operator) or,
 // without them, a global Reinhard tone mapping of the vertex radiance. Written through a
 // temporary file and a rename: an interrupted export leaves nothing half-written.
-void WritePly(const std::filesystem::path& file, const mesh::Mesh& mesh, const std::vector<Rgb8>* display = nullptr);
+// With `radiance_filled` (one flag per vertex) the vertices carry a 13th property,
+// `uchar radiance_filled` (1 = the radiance came from neighbours, not from the volume).
+void WritePly(const std::filesystem::path& file, const mesh::Mesh& mesh, const std::vector<Rgb8>* display = nullptr,
+              const std::vector<std::uint8_t>* radiance_filled = nullptr);
 
 // Reads what WritePly writes (and any binary little-endian PLY with the same vertex
 // properties in the same order). Throws InputError naming the file on anything else.
-mesh::Mesh ReadPly(const std::filesystem::path& file);
+// The optional 13th property is returned through `radiance_filled` when given (all 0 when
+// the file has none).
+mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>* radiance_filled = nullptr);
 
 }  // namespace hdrf::io

@@ -38,10 +38,11 @@ double Area(Float3 a, Float3 b, Float3 c) { return 0.5 * double(Length(Cross(b -
 
 // Keeps the vertices `keep` marks, in order, and remaps the triangles (dropping any that
 // touch a removed vertex).
-void Compact(Mesh& m, std::vector<std::uint8_t>& flags, const std::vector<char>& keep) {
+void Compact(Mesh& m, std::vector<std::uint8_t>& flags, std::vector<std::int32_t>& source, const std::vector<char>& keep) {
   std::vector<std::int32_t> map(m.position.size(), -1);
   Mesh out;
   std::vector<std::uint8_t> out_flags;
+  std::vector<std::int32_t> out_source;
   for (std::size_t v = 0; v < m.position.size(); ++v) {
     if (!keep[v]) continue;
     map[v] = std::int32_t(out.position.size());
@@ -49,6 +50,7 @@ void Compact(Mesh& m, std::vector<std::uint8_t>& flags, const std::vector<char>&
     if (v < m.normal.size()) out.normal.push_back(m.normal[v]);
     if (v < m.radiance.size()) out.radiance.push_back(m.radiance[v]);
     out_flags.push_back(flags[v]);
+    out_source.push_back(source[v]);
   }
   for (const auto& t : m.triangles) {
     const std::array<std::int32_t, 3> r = {map[std::size_t(t[0])], map[std::size_t(t[1])], map[std::size_t(t[2])]};
@@ -56,6 +58,7 @@ void Compact(Mesh& m, std::vector<std::uint8_t>& flags, const std::vector<char>&
   }
   m = std::move(out);
   flags = std::move(out_flags);
+  source = std::move(out_source);
 }
 
 std::vector<char> Referenced(const Mesh& m) {
@@ -126,6 +129,8 @@ CleanMesh Clean(const Mesh& in, const CleanOptions& o) {
   if (m.normal.size() != m.position.size()) m.normal.assign(m.position.size(), Float3{0, 0, 0});
   std::vector<std::uint8_t>& flags = r.radiance_filled;
   flags.assign(m.position.size(), 0);
+  r.source.resize(m.position.size());
+  std::iota(r.source.begin(), r.source.end(), 0);
   CleanReport& rep = r.report;
 
   // Crop.
@@ -251,6 +256,7 @@ CleanMesh Clean(const Mesh& in, const CleanOptions& o) {
       m.normal.push_back(Length(n) > 0 ? Normalized(n) : Float3{0, 0, 0});
       m.radiance.push_back(lit ? rad / float(lit) : Float3{0, 0, 0});
       flags.push_back(1);
+      r.source.push_back(-1);
       // The loop runs along the boundary as its triangles orient it; the fan runs the other way.
       for (std::size_t i = 0; i < loop.size(); ++i)
         m.triangles.push_back({std::int32_t(loop[(i + 1) % loop.size()]), std::int32_t(loop[i]), centre});
@@ -291,7 +297,7 @@ CleanMesh Clean(const Mesh& in, const CleanOptions& o) {
     }
     for (std::size_t v = 0; v < m.position.size(); ++v) rep.radiance_missing += keep[v] && !has[v];
   }
-  Compact(m, flags, keep);
+  Compact(m, flags, r.source, keep);
   return r;
 }
 

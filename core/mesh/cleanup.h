@@ -37,6 +37,7 @@ struct CleanReport {
 struct CleanMesh {
   Mesh mesh;
   std::vector<std::uint8_t> radiance_filled;  // per vertex: 1 = radiance from neighbours (or a hole's fill)
+  std::vector<std::int32_t> source;           // per vertex: its index in the input, -1 for a hole's centre
   CleanReport report;
 };
 

@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/exr.h"
+#include "io/ply.h"
 #include "io/image_io.h"
 #include "io/sensor_json.h"
 #include "io/sequence.h"
@@ -401,6 +402,50 @@ TEST(Cli, TonemapEveryOperatorAndItsErrors) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("missing.exr"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// hdrfusion export: a scan's mesh cleaned and levelled (floor at z = 0), the flags of the
+// filled radiance in the PLY, the transform and the clean-up in export.json; refusals name
+// what is wrong and write nothing.
+TEST(Cli, ExportCleansAndLevelsAScan) {
+  test::TempDir dir;
+  RunResult r = RunCli("scan synthetic:frames=30,size=160x120 --out " + (dir / "scan").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::vector<std::uint8_t> flags;
+  const mesh::Mesh m = io::ReadPly(dir / "out" / "mesh.ply", &flags);
+  const auto report = nlohmann::json::parse(test::ReadText(dir / "out" / "export.json"));
+  ASSERT_EQ(flags.size(), m.position.size());
+  int flagged = 0;
+  for (std::uint8_t f : flags) flagged += f;
+  EXPECT_GE(flagged, report["clean"]["radiance_filled"].get<int>());
+  EXPECT_EQ(report["vertices"].get<std::size_t>(), m.position.size());
+  EXPECT_EQ(report["transform_output_from_model"].size(), 16u);
+  ASSERT_TRUE(report["floor_found"].get<bool>()) << report.dump();
+  // Level with the floor at 0: the 1st percentile of height is within 3 cm of it.
+  std::vector<float> z;
+  for (const Float3& p : m.position) z.push_back(p.z);
+  std::sort(z.begin(), z.end());
+  EXPECT_NEAR(z[z.size() / 100], 0.f, 0.03f);
+  for (const Float3& c : m.radiance) ASSERT_GT(Luminance(c), 0.f);
+  // Refusals.
+  r = RunCli("export " + (dir / "nothing").string() + " --out " + (dir / "x").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("nothing"), std::string::npos) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --crop 0,0,0,1,1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--crop"), std::string::npos) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --tone mantiuk08,peak=1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x"));
 }
 
 }  // namespace
