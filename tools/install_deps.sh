@@ -13,6 +13,7 @@ packages=(
   libopencv-photo-dev
   libopenexr-dev libopenni2-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
+  libmeshoptimizer-dev
   pfstools pfstmo
 )
 if [ "${1:-}" = "--peers" ]; then

@@ -12,6 +12,7 @@
 #include "io/exr.h"
 #include "io/ocio_display.h"
 #include "io/ply.h"
+#include "io/simplify.h"
 #include "io/text_table.h"
 #include "mesh/cleanup.h"
 #include "mesh/world_frame.h"
@@ -44,6 +45,7 @@ mesh::Box ParseBox(const std::string& text) {
 Command AddExportCommand(CLI::App& app) {
   struct Args {
     std::string in, out, up = "z", crop, tone = "mantiuk08";
+    std::size_t triangles = 0;
     mesh::CleanOptions clean;
     bool no_clean = false;
   };
@@ -58,6 +60,9 @@ Command AddExportCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--weld", a->clean.weld_tolerance, "Merge vertices closer than this (m)")->capture_default_str();
   cmd->add_option("--crop", a->crop, "Keep only what is inside xmin,ymin,zmin,xmax,ymax,zmax (metres, output frame)");
+  cmd->add_option("--triangles", a->triangles, "Simplify to at most this many triangles (0: keep all); normals, radiance "
+                                               "and flags are kept, boundaries are not moved")
+      ->capture_default_str();
   cmd->add_flag("--no-clean", a->no_clean, "Write the mesh as extracted (levelled only)");
   cmd->add_option("--tone", a->tone, "Tone mapping of the PLY's display colours: OP[,key=value...]")->capture_default_str();
   return {cmd, [a] {
@@ -94,6 +99,16 @@ Command AddExportCommand(CLI::App& app) {
       c.radiance_filled = std::move(flags);
       if (c.mesh.triangles.empty()) throw SettingError("--crop", "the box holds none of the mesh (" + wf.Describe() + ")");
     }
+    double simplify_error = 0;
+    const std::size_t before_simplify = c.mesh.triangles.size();
+    if (a->triangles > 0) {
+      io::SimplifyResult s = io::Simplify(c.mesh, a->triangles);
+      std::vector<std::uint8_t> flags(s.mesh.position.size());
+      for (std::size_t v = 0; v < flags.size(); ++v) flags[v] = c.radiance_filled[std::size_t(s.source[v])];
+      c.mesh = std::move(s.mesh);
+      c.radiance_filled = std::move(flags);
+      simplify_error = s.error_m;
+    }
     // Display colours: the operator's curve from the scan's last render where there is one.
     auto op = decl.make(params, Device::kCpu);
     const fs::path render = in / "render_last.exr";
@@ -118,6 +133,7 @@ Command AddExportCommand(CLI::App& app) {
         {"tone_mapping", tonemap::FormatSpec(spec)},
         {"vertices", c.mesh.position.size()},
         {"triangles", c.mesh.triangles.size()},
+        {"simplify", {{"budget", a->triangles}, {"triangles_before", before_simplify}, {"error_m", simplify_error}}},
         {"clean", {{"welded", r.welded}, {"degenerate_removed", r.degenerate_removed}, {"duplicate_removed", r.duplicate_removed},
                    {"cropped", r.cropped}, {"pieces_kept", r.pieces_kept}, {"pieces_removed", r.pieces_removed},
                    {"holes_filled", r.holes_filled}, {"holes_left", r.holes_left}, {"radiance_filled", r.radiance_filled},
@@ -125,10 +141,14 @@ Command AddExportCommand(CLI::App& app) {
     io::WriteFileAtomically(out / "export.json", report.dump(1) + "\n");
     std::printf("%s: %zu vertices, %zu triangles; %s\nclean-up: %d welded, %d degenerate and %d duplicate triangles removed, "
                 "%d pieces kept and %d dropped, %d holes closed (%d left open), %d vertices' radiance from neighbours "
-                "(flagged)\nwrote %s/{mesh.ply, export.json}\n",
+                "(flagged)\n%swrote %s/{mesh.ply, export.json}\n",
                 ply.string().c_str(), c.mesh.position.size(), c.mesh.triangles.size(), wf.Describe().c_str(), r.welded,
                 r.degenerate_removed, r.duplicate_removed, r.pieces_kept, r.pieces_removed, r.holes_filled, r.holes_left,
-                r.radiance_filled, out.string().c_str());
+                r.radiance_filled,
+                a->triangles > 0 ? ("simplified from " + std::to_string(before_simplify) + " triangles (largest deviation " +
+                                    std::to_string(simplify_error * 1000).substr(0, 5) + " mm)\n").c_str()
+                                 : "",
+                out.string().c_str());
     return 0;
   }};
 }

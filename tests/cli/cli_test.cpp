@@ -435,6 +435,22 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   std::sort(z.begin(), z.end());
   EXPECT_NEAR(z[z.size() / 100], 0.f, 0.03f);
   for (const Float3& c : m.radiance) ASSERT_GT(Luminance(c), 0.f);
+  // To a triangle budget: within it, every vertex still with its radiance and normal, the
+  // deviation reported.
+  const std::size_t budget = m.triangles.size() / 5;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "small").string() + " --triangles " + std::to_string(budget));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const mesh::Mesh s = io::ReadPly(dir / "small" / "mesh.ply");
+  const auto sr = nlohmann::json::parse(test::ReadText(dir / "small" / "export.json"));
+  EXPECT_LE(s.triangles.size(), budget);
+  EXPECT_GT(s.triangles.size(), budget / 2);
+  EXPECT_LT(s.position.size(), m.position.size());
+  for (std::size_t v = 0; v < s.position.size(); ++v) {
+    ASSERT_GT(Luminance(s.radiance[v]), 0.f);
+    ASSERT_NEAR(Length(s.normal[v]), 1.f, 1e-3);
+  }
+  EXPECT_GT(sr["simplify"]["error_m"].get<double>(), 0);
+  EXPECT_LT(sr["simplify"]["error_m"].get<double>(), 0.01);
   // Refusals.
   r = RunCli("export " + (dir / "nothing").string() + " --out " + (dir / "x").string());
   EXPECT_NE(r.status, 0);
