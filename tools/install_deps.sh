@@ -13,7 +13,8 @@ packages=(
   libopencv-photo-dev
   libopenexr-dev libopenni2-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
-  libmeshoptimizer-dev
+  libmeshoptimizer-dev libtinygltf-dev
+  assimp-utils
   pfstools pfstmo
 )
 if [ "${1:-}" = "--peers" ]; then

@@ -16,6 +16,7 @@
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
+#include "io/keyframes_io.h"
 #include "io/options_json.h"
 #include "io/ply.h"
 #include "io/text_table.h"
@@ -147,6 +148,8 @@ Command AddScanCommand(CLI::App& app) {
     std::vector<io::TimedPose> trajectory;
     for (const pipeline::FrameReport& r : session.reports()) trajectory.push_back({r.timestamp, r.T_world_camera});
     io::WriteTrajectory(out / "trajectory.txt", trajectory);
+    // The keyframes (colour, pose, exposure ratio) and the sensor: what export bakes textures from.
+    io::WriteKeyframes(out, session.keyframes(), session.sensor(), o.pcf);
     std::fprintf(stderr, "scan: extracting the mesh...\n");
     const mesh::Mesh m = pipe.ExtractMesh();
     // Renders and the mesh's display colours through one operator instance: the mesh takes
@@ -179,8 +182,9 @@ Command AddScanCommand(CLI::App& app) {
     std::printf("scanned %d frames (%d lost) at %.1f frames/s: %zu mesh vertices, %zu triangles\n", n, lost,
                 session.frames_per_second(), m.position.size(), m.triangles.size());
     if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
-    std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, report.json}\n",
-                a->out.c_str());
+    std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, keyframes/ (%zu), "
+                "keyframes.json, sensor.json, report.json}\n",
+                a->out.c_str(), session.keyframes().size());
     if (!failure.empty())
       throw Error(failure + " (the model of the " + std::to_string(n) + " frames processed was saved in " + a->out + ")");
     return 0;

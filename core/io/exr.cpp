@@ -6,6 +6,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
 #include <half.h>
 
 #include <cmath>
@@ -52,34 +53,52 @@ RadianceImage ReadExr(const std::filesystem::path& file) {
 
 void WriteExr(const std::filesystem::path& file, const RadianceImage& image,
               ExrPrecision precision) {
+  ExrWriteOptions o;
+  o.precision = precision;
+  WriteExr(file, image, o);
+}
+
+void WriteExr(const std::filesystem::path& file, const RadianceImage& image, const ExrWriteOptions& o) {
+  for (const ExrChannel& c : o.extra)
+    if (!c.image || c.image->width() != image.width() || c.image->height() != image.height())
+      throw Error("OpenEXR channel '" + c.name + "' differs in size from the image (" + file.string() + ")");
   const auto tmp = TemporarySibling(file);
   try {
     Imf::Header header(image.width(), image.height());
     header.compression() = Imf::ZIP_COMPRESSION;
-    const Imf::PixelType type = precision == ExrPrecision::kHalf ? Imf::HALF : Imf::FLOAT;
-    const char* names[3] = {"R", "G", "B"};
-    for (const char* n : names) header.channels().insert(n, Imf::Channel(type));
-    Imf::OutputFile out(tmp.string().c_str(), header);
-    // The output file does not convert between pixel types: give it what the file holds.
-    Imf::FrameBuffer fb;
-    std::vector<half> halves;
-    if (type == Imf::HALF) {
-      halves.resize(image.size() * 3);
-      for (std::size_t i = 0; i < image.size(); ++i) {
-        halves[3 * i] = half(image[i].x);
-        halves[3 * i + 1] = half(image[i].y);
-        halves[3 * i + 2] = half(image[i].z);
+    for (const auto& [key, value] : o.attributes) header.insert(key, Imf::StringAttribute(value));
+    // Planes as the file holds them (the output file does not convert between pixel types).
+    struct Plane {
+      std::string name;
+      Imf::PixelType type;
+      std::vector<half> h;
+      std::vector<float> f;
+    };
+    std::vector<Plane> planes;
+    const std::size_t n = image.size();
+    const auto add = [&](const std::string& name, ExrPrecision p, auto get) {
+      Plane pl{name, p == ExrPrecision::kHalf ? Imf::HALF : Imf::FLOAT, {}, {}};
+      if (pl.type == Imf::HALF) {
+        pl.h.resize(n);
+        for (std::size_t i = 0; i < n; ++i) pl.h[i] = half(get(i));
+      } else {
+        pl.f.resize(n);
+        for (std::size_t i = 0; i < n; ++i) pl.f[i] = get(i);
       }
-      char* base = reinterpret_cast<char*>(halves.data());
-      const std::size_t xs = 3 * sizeof(half), ys = xs * std::size_t(image.width());
-      for (int c = 0; c < 3; ++c)
-        fb.insert(names[c], Imf::Slice(Imf::HALF, base + c * sizeof(half), xs, ys));
-    } else {
-      char* base = reinterpret_cast<char*>(const_cast<Float3*>(image.data()));
-      const std::size_t xs = sizeof(Float3), ys = sizeof(Float3) * std::size_t(image.width());
-      for (int c = 0; c < 3; ++c)
-        fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+      planes.push_back(std::move(pl));
+    };
+    add("R", o.precision, [&](std::size_t i) { return image[i].x; });
+    add("G", o.precision, [&](std::size_t i) { return image[i].y; });
+    add("B", o.precision, [&](std::size_t i) { return image[i].z; });
+    for (const ExrChannel& c : o.extra) add(c.name, c.precision, [&](std::size_t i) { return (*c.image)[i]; });
+    Imf::FrameBuffer fb;
+    for (Plane& pl : planes) {
+      header.channels().insert(pl.name, Imf::Channel(pl.type));
+      const std::size_t size = pl.type == Imf::HALF ? sizeof(half) : sizeof(float);
+      char* base = pl.type == Imf::HALF ? reinterpret_cast<char*>(pl.h.data()) : reinterpret_cast<char*>(pl.f.data());
+      fb.insert(pl.name, Imf::Slice(pl.type, base, size, size * std::size_t(image.width())));
     }
+    Imf::OutputFile out(tmp.string().c_str(), header);
     out.setFrameBuffer(fb);
     out.writePixels(image.height());
   } catch (const std::exception& e) {
@@ -88,6 +107,38 @@ void WriteExr(const std::filesystem::path& file, const RadianceImage& image,
     throw InputError(file, std::string("cannot be written as OpenEXR: ") + e.what());
   }
   CommitTemporary(tmp, file);
+}
+
+Image<float> ReadExrChannel(const std::filesystem::path& file, const std::string& name) {
+  if (!std::filesystem::exists(file)) throw InputError(file, "OpenEXR file is missing");
+  try {
+    Imf::InputFile in(file.string().c_str());
+    const Imath::Box2i dw = in.header().dataWindow();
+    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    if (!in.header().channels().findChannel(name)) throw InputError(file, "OpenEXR file has no channel '" + name + "'");
+    Image<float> out(w, h);
+    char* base = reinterpret_cast<char*>(out.data()) - (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * sizeof(float);
+    Imf::FrameBuffer fb;
+    fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(w)));
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
+    return out;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(file, std::string("cannot be read as OpenEXR: ") + e.what());
+  }
+}
+
+std::optional<std::string> ReadExrAttribute(const std::filesystem::path& file, const std::string& name) {
+  try {
+    Imf::InputFile in(file.string().c_str());
+    const auto* a = in.header().findTypedAttribute<Imf::StringAttribute>(name);
+    if (!a) return std::nullopt;
+    return a->value();
+  } catch (const std::exception& e) {
+    throw InputError(file, std::string("cannot be read as OpenEXR: ") + e.what());
+  }
 }
 
 }  // namespace hdrf::io

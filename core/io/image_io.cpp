@@ -91,6 +91,15 @@ void WriteColorPng(const std::filesystem::path& file, const ColorImage& image) {
   Save(file, bgr);
 }
 
+std::vector<std::uint8_t> EncodeColorPng(const ColorImage& image) {
+  cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8*>(image.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  std::vector<std::uint8_t> out;
+  if (!cv::imencode(".png", bgr, out)) throw Error("PNG encoding failed");
+  return out;
+}
+
 void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image) {
   cv::Mat m(image.height(), image.width(), CV_16UC1, const_cast<std::uint16_t*>(image.data()));
   Save(file, m);

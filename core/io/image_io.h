@@ -1,7 +1,9 @@
 // PNG colour and 16-bit depth images, checked against what docs/formats.md promises.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "common/image.h"
 
@@ -17,6 +19,8 @@ DepthRawImage ReadDepthImage(const std::filesystem::path& file);
 // Lossless PNG writers (through a temporary file and a rename).
 void WriteColorPng(const std::filesystem::path& file, const ColorImage& image);
 void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image);
+// The PNG bytes of a colour image (for containers such as glTF binaries).
+std::vector<std::uint8_t> EncodeColorPng(const ColorImage& image);
 
 // Raw depth to metres (0 stays 0 = no data).
 DepthImage DepthToMetres(const DepthRawImage& raw, double scale);

@@ -6,14 +6,17 @@
 namespace hdrf::pipeline {
 
 ScanSession::ScanSession(const PipelineOptions& options, const PinholeCamera& camera,
-                         const SensorInfo& sensor)
-    : pipeline_(options, camera, sensor) {}
+                         const SensorInfo& sensor, const KeyframeOptions& keyframes)
+    : pipeline_(options, camera, sensor), sensor_(sensor), keyframes_(keyframes) {
+  sensor_.camera = camera;
+}
 
 const FrameReport& ScanSession::Process(const FrameInput& frame) {
   reports_.push_back(pipeline_.Process(frame));
   const FrameReport& r = reports_.back();
   total_ms_ += r.ms;
   lost_ += r.tracking.lost;
+  keyframes_.Offer(r, frame.color);
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "pipeline/keyframes.h"
 #include "pipeline/pipeline.h"
 
 namespace hdrf::pipeline {
@@ -14,7 +15,7 @@ namespace hdrf::pipeline {
 class ScanSession {
  public:
   ScanSession(const PipelineOptions& options, const PinholeCamera& camera,
-              const SensorInfo& sensor);
+              const SensorInfo& sensor, const KeyframeOptions& keyframes = {});
 
   // Runs one frame and records its report.
   const FrameReport& Process(const FrameInput& frame);
@@ -23,6 +24,9 @@ class ScanSession {
   const Pipeline& pipeline() const { return pipeline_; }
 
   const std::vector<FrameReport>& reports() const { return reports_; }
+  // The frames kept for texturing (keyframes.h).
+  const std::vector<Keyframe>& keyframes() const { return keyframes_.keyframes(); }
+  const SensorInfo& sensor() const { return sensor_; }
   int frames() const { return int(reports_.size()); }
   int lost() const { return lost_; }
   // One pose per processed frame (a lost frame keeps the last good pose), with timestamps.
@@ -38,6 +42,8 @@ class ScanSession {
 
  private:
   Pipeline pipeline_;
+  SensorInfo sensor_;
+  KeyframeSelector keyframes_;
   std::vector<FrameReport> reports_;
   StageTimes total_ms_;
   int lost_ = 0;
