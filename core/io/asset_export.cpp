@@ -99,6 +99,10 @@ class Staging {
   }
   fs::path operator/(const std::string& name) const { return dir_ / name; }
   void Commit(const std::vector<std::string>& files) {
+    // Everything that can be checked before the first file moves: a half-replaced set would
+    // mix two exports.
+    for (const std::string& f : files)
+      if (fs::is_directory(out_ / f)) throw InputError(out_ / f, "is a folder: cannot be replaced by the export's file");
     for (const std::string& f : files) {
       if (fs::path(f).has_parent_path()) fs::create_directories(out_ / fs::path(f).parent_path());
       std::error_code ec;

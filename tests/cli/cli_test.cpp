@@ -12,6 +12,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/error.h"
+#include "io/asset_export.h"
 #include "io/exr.h"
 #include "io/ply.h"
 #include "io/image_io.h"
@@ -462,6 +464,107 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "x"));
+}
+
+// The textured export end to end, read back by a third-party reader (assimp, where
+// installed) and by OpenEXR; cancel and failure leave the output folder as it was.
+std::string Field(const std::string& text, const std::string& key) {
+  const auto at = text.find(key);
+  if (at == std::string::npos) return "";
+  const auto end = text.find('\n', at);
+  return text.substr(at + key.size(), end - at - key.size());
+}
+
+TEST(Cli, ExportTexturedAssetsThatOtherToolsRead) {
+  test::TempDir dir;
+  RunResult r = RunCli("scan synthetic:frames=40,size=160x120 --out " + (dir / "scan").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(dir / "scan" / "keyframes.json"));
+  const fs::path out = dir / "asset";
+  r = RunCli("export " + (dir / "scan").string() + " --out " + out.string() + " --texel-mm 4 --render 200x150");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto rep = nlohmann::json::parse(test::ReadText(out / "export.json"));
+  const auto& tex = rep["texture"];
+  const long surface = tex["surface_texels"].get<long>(), frames = tex["texels_from_frames"].get<long>();
+  const std::size_t tv = tex["textured_vertices"].get<std::size_t>(), tris = rep["triangles"].get<std::size_t>();
+  std::printf("export: %zu textured vertices, %zu triangles, texture %dx%d, %ld of %ld texels from %d keyframes\n", tv, tris,
+              tex["width"].get<int>(), tex["height"].get<int>(), frames, surface, tex["keyframes"].get<int>());
+  EXPECT_GT(tex["keyframes"].get<int>(), 2);
+  EXPECT_GT(double(frames), 0.3 * double(surface));  // (40 low-resolution frames: 6 keyframes)
+  EXPECT_NEAR(tex["texel_mm"].get<double>(), 4.0, 1e-9);
+  for (const char* f : {"mesh.ply", "mesh.obj", "mesh.mtl", "mesh_display.mtl", "mesh.glb", "texture.exr", "texture.png",
+                        "render.exr", "render.png", "export.json"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  // The HDR texture and the render read back with OpenEXR: units in the header, alpha and depth.
+  const RadianceImage t = io::ReadExr(out / "texture.exr");
+  EXPECT_EQ(t.width(), tex["width"].get<int>());
+  EXPECT_NE(io::ReadExrAttribute(out / "texture.exr", "hdrfusion:units").value_or("").find("radiance"), std::string::npos);
+  const Image<float> alpha = io::ReadExrChannel(out / "render.exr", "A"), depth = io::ReadExrChannel(out / "render.exr", "Z");
+  ASSERT_EQ(alpha.width(), 200);
+  ASSERT_EQ(depth.height(), 150);
+  long covered = 0, consistent = 0;
+  for (std::size_t i = 0; i < alpha.size(); ++i) {
+    covered += alpha[i] == 1.0f;
+    consistent += (alpha[i] == 1.0f) == (depth[i] > 0.1f && depth[i] < 20.0f);
+  }
+  EXPECT_GT(covered, long(alpha.size() / 4));
+  EXPECT_EQ(consistent, long(alpha.size()));
+  // A third-party reader: assimp's command-line tool.
+  if (std::system("command -v assimp > /dev/null 2>&1") != 0) {
+    std::printf("assimp not installed (Debian's assimp-utils): skipping the third-party read-back\n");
+  } else {
+    const auto info = [&](const std::string& file) {
+      const std::string log = (dir / "assimp.txt").string();
+      const int rc = std::system(("assimp info '" + (out / file).string() + "' > '" + log + "' 2>&1").c_str());
+      EXPECT_EQ(rc, 0) << file;
+      return test::ReadText(log);
+    };
+    const std::string obj = info("mesh.obj"), glb = info("mesh.glb");
+    EXPECT_EQ(std::stoul(Field(obj, "Faces:")), tris) << obj;
+    EXPECT_EQ(std::stoul(Field(glb, "Faces:")), tris) << glb;
+    EXPECT_EQ(std::stoul(Field(glb, "Vertices:")), tv) << glb;
+    // assimp's OBJ reader rebuilds vertices from face corners and joins identical ones with a
+    // conservative search: a few remain apart.
+    const std::size_t obj_vertices = std::stoul(Field(obj, "Vertices:"));
+    EXPECT_GE(obj_vertices, tv);
+    EXPECT_LE(double(obj_vertices), 1.03 * double(tv));
+    EXPECT_NE(obj.find("'texture.exr'"), std::string::npos) << obj;
+    EXPECT_NE(Field(glb, "Textures (embed.):").find('1'), std::string::npos) << glb;
+  }
+  // Cancelled midway: nothing in the output folder changes.
+  const io::ScanData scan = io::LoadScan(dir / "scan");
+  io::AssetOptions o;
+  o.atlas.texel_m = 0.004;
+  const fs::path fresh = dir / "cancelled";
+  std::filesystem::create_directories(fresh);
+  test::WriteText(fresh / "keep.txt", "mine");
+  for (const char* at : {"texture", "writing"}) {
+    EXPECT_THROW(io::ExportAsset(scan, o, fresh, [at](const std::string& stage, double) { return stage != at; }), Cancelled);
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(fresh)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{"keep.txt"}) << "cancelled at " << at;
+  }
+  // A file that cannot be replaced: refused before any file moves; the old export stays whole.
+  std::filesystem::remove(out / "mesh.glb");
+  std::filesystem::create_directory(out / "mesh.glb");
+  const auto before = std::filesystem::last_write_time(out / "mesh.obj");
+  r = RunCli("export " + (dir / "scan").string() + " --out " + out.string() + " --texel-mm 4");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("mesh.glb"), std::string::npos) << r.output;
+  EXPECT_EQ(std::filesystem::last_write_time(out / "mesh.obj"), before);
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    EXPECT_NE(e.path().filename().string().rfind(".export-", 0), 0u) << "staging left behind: " << e.path();
+  // Refusals naming the option.
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --formats ply,fbx");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("fbx"), std::string::npos) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --texel-mm 0.01");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("mm"), std::string::npos) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --render 640x");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--render"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "y"));
 }
 
 }  // namespace
