@@ -1,5 +1,7 @@
 #include "gui/main_window.h"
 
+#include "gui/export_dialog.h"
+
 #include "calibration_wizard/calibration_wizard.h"
 
 #include <QAction>
@@ -347,12 +349,32 @@ void MainWindow::ShowCameraPanel() {
 
 }
 
+ExportDialog* MainWindow::OpenExportDialog() {
+  if (!export_dialog_) {
+    const ToneChoice tc = tone_panel_->choice();
+    auto* dlg = new ExportDialog(QString::fromStdString(tonemap::FormatSpec({tc.op, tc.values})), this);
+    dlg->setAttribute(Qt::WA_DeleteOnClose);
+    connect(dlg, &ExportDialog::exportRequested, this, [this](const QString& folder, const io::AssetOptions& o) {
+      worker_->ArmExport();
+      QMetaObject::invokeMethod(worker_, [w = worker_, folder, o] { w->ExportAsset(folder, o); }, Qt::QueuedConnection);
+    });
+    connect(dlg, &ExportDialog::cancelRequested, this, [this] { worker_->CancelExport(); });
+    connect(worker_, &ScanWorker::assetProgress, dlg, &ExportDialog::OnProgress);
+    connect(worker_, &ScanWorker::assetDone, dlg, &ExportDialog::OnDone);
+    export_dialog_ = dlg;
+  }
+  export_dialog_->show();
+  export_dialog_->raise();
+  return export_dialog_;
+}
+
 QString MainWindow::source_text() const { return source_->currentText(); }
 bool MainWindow::start_enabled() const { return start_->isEnabled(); }
 
 void MainWindow::BuildMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   QMenu* exp = file->addMenu(tr("&Export"));
+  exp->addAction(tr("Textured HDR asset (OBJ, glTF, OpenEXR)…"), this, [this] { OpenExportDialog(); });
   exp->addAction(tr("HDR mesh (PLY)…"), this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, tr("Export HDR mesh"), "mesh.ply", tr("PLY (*.ply)"));
     if (p.isEmpty()) return;

@@ -63,6 +63,8 @@ class MainWindow : public QMainWindow {
   QString health_text() const;
   QString error_text() const;
   ScanSettings CurrentSettings() const;
+  // File > Export > Textured HDR asset: the dialog (one at a time), wired to the worker.
+  class ExportDialog* OpenExportDialog();
   // Writes the window as PNG and per-view statistics as JSON beside it (PATH.json).
   bool SaveScreenshot(const QString& path);
 
@@ -112,6 +114,7 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<ToneMapper> tone_;
   std::shared_ptr<const Snapshot> latest_, shown_;
   QPointer<wizard::CalibrationWizard> wizard_;
+  QPointer<class ExportDialog> export_dialog_;
   std::shared_ptr<const mesh::Mesh> mesh_shown_;
   qint64 mesh_time_ms_ = 0;
   QTimer* render_timer_ = nullptr;

@@ -25,6 +25,7 @@ std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) 
 
 ScanWorker::ScanWorker() {
   qRegisterMetaType<hdrf::gui::ScanSettings>();
+  qRegisterMetaType<hdrf::io::AssetOptions>();
   qRegisterMetaType<std::shared_ptr<const hdrf::gui::Snapshot>>();
   qRegisterMetaType<hdrf::sensors::LiveOptions>();
   qRegisterMetaType<std::vector<hdrf::gui::SensorListing>>();
@@ -496,6 +497,48 @@ void ScanWorker::ExportRender(const QString& path) {
     emit exportDone(true, tr("Wrote %1").arg(path));
   } catch (const std::exception& e) {
     emit exportDone(false, tr("OpenEXR export: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& options) {
+  if (!session_ || session_->frames() == 0) {
+    emit assetDone(false, tr("Nothing to export: scan first"), {});
+    return;
+  }
+  try {
+    io::ScanData scan;
+    scan.source = source_spec_;
+    emit assetProgress(0, tr("mesh"));
+    scan.mesh = session_->pipeline().ExtractMesh([this](double f) {
+      emit assetProgress(0.1 * f, tr("mesh"));
+      return !cancel_export_;
+    });
+    if (cancel_export_) throw Cancelled();
+    if (scan.mesh.triangles.empty()) throw Error("the model has no surface yet");
+    scan.tone_reference = session_->pipeline().Render(session_->pipeline().pose()).radiance;
+    io::KeyframeSet ks;
+    for (const pipeline::Keyframe& k : session_->keyframes())
+      ks.keyframes.push_back({k.index, k.timestamp, k.T_world_camera, k.exposure_ratio, k.color.Clone()});
+    ks.sensor = session_->sensor();
+    ks.pcf_power = session_->pipeline().options().pcf;
+    scan.keyframes = std::move(ks);
+    scan.trajectory = session_->poses();
+    const io::AssetResult r = io::ExportAsset(scan, options, folder.toStdString(), [this](const std::string& stage, double f) {
+      emit assetProgress(0.1 + 0.9 * f, QString::fromStdString(stage));
+      return !cancel_export_;
+    });
+    QImage preview;
+    if (r.preview.width() > 0)
+      preview = QImage(reinterpret_cast<const uchar*>(r.preview.data()), r.preview.width(), r.preview.height(),
+                       3 * r.preview.width(), QImage::Format_RGB888)
+                    .copy();
+    QString msg = tr("Wrote %1 files into %2: %3").arg(r.files.size()).arg(folder, QString::fromStdString(r.Summary()));
+    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(QString::fromStdString(w));
+    emit assetDone(true, msg, preview);
+  } catch (const Cancelled&) {
+    emit assetDone(false, tr("Export cancelled; the folder was left as it was"), {});
+  } catch (const std::exception& e) {
+    emit assetDone(false, tr("Export failed: %1").arg(QString::fromStdString(e.what())), {});
   }
 }
 

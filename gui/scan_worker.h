@@ -11,6 +11,10 @@
 // and resumes when the same camera (same serial) comes back.
 #pragma once
 
+#include "gui/export_dialog.h"
+#include "io/asset_export.h"
+
+#include <QImage>
 #include <QObject>
 #include <atomic>
 #include <memory>
@@ -79,6 +83,9 @@ class ScanWorker : public QObject {
   bool running() const { return running_; }
   // Cancels an export in progress (any thread).
   void CancelExport() { cancel_export_ = true; }
+  // Clears a previous cancel: call (from any thread) before queueing ExportAsset, so that a
+  // cancel pressed before the worker starts the export still counts.
+  void ArmExport() { cancel_export_ = false; }
 
  public slots:
   // Opens the source and a fresh pipeline (the previous model is dropped).
@@ -93,6 +100,10 @@ class ScanWorker : public QObject {
   void ExportMesh(const QString& path, const QString& tone = QStringLiteral("mantiuk08"));
   void ExportTrajectory(const QString& path);
   void ExportRender(const QString& path);
+  // The scan as textured HDR assets into a folder (io::ExportAsset: keyframes, mesh, the
+  // model's render from the current pose as the tone reference). Progress and the result
+  // come as assetProgress / assetDone; CancelExport stops it, leaving the folder as it was.
+  void ExportAsset(const QString& folder, const hdrf::io::AssetOptions& options);
   // Live camera: exposure controls (the ae/awb/exposure/gain parts; unset ones stay).
   void SetCameraControls(const hdrf::sensors::LiveOptions& controls);
   // Records what the camera delivers from now on (scanning or not): a sequence folder
@@ -111,6 +122,8 @@ class ScanWorker : public QObject {
   void finished(int frames);            // the source is exhausted
   void exportProgress(double fraction);
   void exportDone(bool ok, const QString& message);
+  void assetProgress(double fraction, const QString& stage);
+  void assetDone(bool ok, const QString& message, const QImage& preview);
   void sensorsListed(const std::vector<hdrf::gui::SensorListing>& sensors);
   void recordingDone(bool ok, const QString& message);
   void cameraLost(const QString& message);  // the scan is paused, the model kept

@@ -5,9 +5,14 @@
 #include <unistd.h>
 
 #include <QComboBox>
+#include <QLineEdit>
+#include <QPushButton>
 #include <QApplication>
 #include <QDockWidget>
+#include <QDir>
+#include <QElapsedTimer>
 #include <QFile>
+#include <QSet>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
@@ -20,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "gui/export_dialog.h"
 #include "gui/image_view.h"
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
@@ -139,6 +145,75 @@ TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
     EXPECT_GT(w.view("radiance")->DistinctLevels(), 8) << key;
   }
   EXPECT_FALSE(w.health_text().contains("lost", Qt::CaseInsensitive));
+}
+
+// File > Export > Textured HDR asset: exports with progress and a preview, and a cancel
+// leaves the folder as it was. HDRF_DOCS_SHOTS=DIR saves the dialog for docs/export.md.
+// Processes events until `done` holds or `ms` pass (a gtest-visible wait: QTRY_* report to
+// QtTest, not to gtest).
+template <typename F>
+bool WaitUntil(F done, int ms) {
+  QElapsedTimer t;
+  t.start();
+  while (!done()) {
+    if (t.elapsed() > ms) return false;
+    QTest::qWait(20);
+  }
+  return true;
+}
+
+TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  StudioOptions o;
+  o.source = "synthetic:frames=40,size=160x120";
+  o.frames = 40;
+  o.autostart = true;
+  MainWindow w(o);
+  w.resize(1400, 900);
+  w.show();
+  QElapsedTimer clock;
+  clock.start();
+  ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= 35; }, 120000))
+      << "the scan did not reach frame 35; frames shown: " << w.frames_shown();
+  std::fprintf(stderr, "scanned %d frames in %.1f s\n", w.latest()->report.index + 1, clock.elapsed() / 1000.0);
+  QTemporaryDir tmp;
+  ExportDialog* dlg = w.OpenExportDialog();
+  ASSERT_NE(dlg, nullptr);
+  EXPECT_EQ(w.OpenExportDialog(), dlg);  // one at a time
+  dlg->findChild<QLineEdit*>("export_folder")->setText(tmp.filePath("asset"));
+  dlg->findChild<QPushButton*>("export_start")->click();
+  EXPECT_TRUE(dlg->busy());
+  ASSERT_TRUE(WaitUntil([&] { return !dlg->busy(); }, 180000));
+  std::fprintf(stderr, "exported at %.1f s: %s\n", clock.elapsed() / 1000.0, dlg->status_text().toStdString().c_str());
+  EXPECT_TRUE(dlg->status_text().startsWith("Wrote")) << dlg->status_text().toStdString();
+  for (const char* f : {"mesh.obj", "mesh.mtl", "mesh.glb", "mesh.ply", "texture.exr", "texture.png", "export.json"})
+    EXPECT_TRUE(QFile::exists(tmp.filePath(QString("asset/") + f))) << f;
+  ASSERT_FALSE(dlg->preview().isNull());
+  // The preview shows the textured model: many distinct colours, not a blank frame.
+  QSet<QRgb> colours;
+  for (int y = 0; y < dlg->preview().height(); y += 2)
+    for (int x = 0; x < dlg->preview().width(); x += 2) colours.insert(dlg->preview().pixel(x, y));
+  EXPECT_GT(colours.size(), 500);
+  if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) {
+    dlg->resize(760, 860);
+    QTest::qWait(200);
+    dlg->grab().save(QString(shots) + "/studio_export.png");
+  }
+  // Cancelled: the folder keeps only what it held.
+  QDir(tmp.path()).mkpath("cancelled");
+  QFile keep(tmp.filePath("cancelled/keep.txt"));
+  ASSERT_TRUE(keep.open(QIODevice::WriteOnly));
+  keep.write("mine");
+  keep.close();
+  dlg->findChild<QLineEdit*>("export_folder")->setText(tmp.filePath("cancelled"));
+  dlg->findChild<QPushButton*>("export_start")->click();
+  dlg->findChild<QPushButton*>("export_cancel")->click();
+  ASSERT_TRUE(WaitUntil([&] { return !dlg->busy(); }, 180000));
+  std::fprintf(stderr, "cancelled at %.1f s\n", clock.elapsed() / 1000.0);
+  EXPECT_TRUE(dlg->status_text().contains("cancelled")) << dlg->status_text().toStdString();
+  EXPECT_EQ(QDir(tmp.filePath("cancelled")).entryList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot | QDir::Hidden),
+            QStringList{"keep.txt"});
 }
 
 TEST(StudioWindow, ASourceErrorShowsAMessage) {
