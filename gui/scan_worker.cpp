@@ -506,23 +506,12 @@ void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& opti
     return;
   }
   try {
-    io::ScanData scan;
-    scan.source = source_spec_;
     emit assetProgress(0, tr("mesh"));
-    scan.mesh = session_->pipeline().ExtractMesh([this](double f) {
+    const io::ScanData scan = io::ScanDataFromSession(*session_, source_spec_, [this](double f) {
       emit assetProgress(0.1 * f, tr("mesh"));
       return !cancel_export_;
     });
     if (cancel_export_) throw Cancelled();
-    if (scan.mesh.triangles.empty()) throw Error("the model has no surface yet");
-    scan.tone_reference = session_->pipeline().Render(session_->pipeline().pose()).radiance;
-    io::KeyframeSet ks;
-    for (const pipeline::Keyframe& k : session_->keyframes())
-      ks.keyframes.push_back({k.index, k.timestamp, k.T_world_camera, k.exposure_ratio, k.color.Clone()});
-    ks.sensor = session_->sensor();
-    ks.pcf_power = session_->pipeline().options().pcf;
-    scan.keyframes = std::move(ks);
-    scan.trajectory = session_->poses();
     const io::AssetResult r = io::ExportAsset(scan, options, folder.toStdString(), [this](const std::string& stage, double f) {
       emit assetProgress(0.1 + 0.9 * f, QString::fromStdString(stage));
       return !cancel_export_;

@@ -8,6 +8,7 @@
 #include <vector>
 #include <cstdio>
 
+#include "cli/bench_export.h"
 #include "cli/bench_tonemap.h"
 #include "cli/commands.h"
 #include "common/error.h"
@@ -101,15 +102,18 @@ Command AddBenchCommand(CLI::App& app) {
     std::string device = "both";
     std::string dir;
     std::vector<std::string> images;
+    std::string scan;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
   cmd->add_option("--suite", a->suite,
                   "sim (the synthetic sensor), engine (per-stage times and frames/s per device and size) or record "
-                  "(recording throughput at VGA into --dir) or tonemap (the operators beside pfstmo at 640x480); "
+                  "(recording throughput at VGA into --dir), tonemap (the operators beside pfstmo at 640x480) or export "
+                  "(the textured export of a scanned room, --frames frames, or of --scan DIR, stage by stage); "
                   "the paper's experiments are hdrfusion-experiments, not part of this tool")
-      ->check(CLI::IsMember({"sim", "engine", "record", "tonemap"}))->capture_default_str();
+      ->check(CLI::IsMember({"sim", "engine", "record", "tonemap", "export"}))->capture_default_str();
   cmd->add_option("--dir", a->dir, "Record suite: a folder on the disk to measure (default: the system's temporary folder)");
+  cmd->add_option("--scan", a->scan, "Export suite: a scan output folder (default: scan the room first)");
   cmd->add_option("--image", a->images, "Tonemap suite: OpenEXR images (default: the shared data's hdr_images)");
   cmd->add_option("--frames", a->frames, "Timed frames per measurement")->check(CLI::Range(5, 100000))
       ->capture_default_str();
@@ -118,6 +122,7 @@ Command AddBenchCommand(CLI::App& app) {
   return {cmd, [a] {
     if (a->suite == "record") return BenchRecord(a->frames, a->dir);
     if (a->suite == "tonemap") return BenchTonemap(a->frames, a->images);
+    if (a->suite == "export") return BenchExport(a->frames, a->scan);
     if (a->suite == "engine") {
       pipeline::EngineBenchOptions o;
       o.frames = a->frames;

@@ -59,6 +59,23 @@ ScanData LoadScan(const fs::path& in) {
   return s;
 }
 
+ScanData ScanDataFromSession(pipeline::ScanSession& session, const std::string& source,
+                             const std::function<bool(double)>& progress) {
+  ScanData scan;
+  scan.source = source;
+  scan.mesh = session.pipeline().ExtractMesh(progress);
+  if (scan.mesh.triangles.empty()) throw Error("the model has no surface yet");
+  scan.tone_reference = session.pipeline().Render(session.pipeline().pose()).radiance;
+  KeyframeSet ks;
+  for (const pipeline::Keyframe& k : session.keyframes())
+    ks.keyframes.push_back({k.index, k.timestamp, k.T_world_camera, k.exposure_ratio, k.color.Clone()});
+  ks.sensor = session.sensor();
+  ks.pcf_power = session.pipeline().options().pcf;
+  scan.keyframes = std::move(ks);
+  scan.trajectory = session.poses();
+  return scan;
+}
+
 std::string AssetResult::Summary() const {
   char line[512];
   std::string s;
@@ -228,7 +245,7 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
     WritePly(stage / "mesh.ply", c.mesh, &display, &c.radiance_filled);
     files.push_back("mesh.ply");
   }
-  ColorImage texture_png;
+  std::vector<std::uint8_t> texture_png;
   if (atlas) {
     ExrWriteOptions eo;
     eo.precision = ExrPrecision::kHalf;
@@ -236,9 +253,11 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
                      {"hdrfusion:texel_mm", std::to_string(atlas->texel_m * 1000)},
                      {"hdrfusion:source", scan.source.string()}};
     WriteExr(stage / "texture.exr", baked->radiance, eo);
-    texture_png = Encode(op->MapList(std::vector<Float3>(baked->radiance.data(), baked->radiance.data() + baked->radiance.size())),
-                         atlas->width, atlas->height, ocio);
-    WriteColorPng(stage / "texture.png", texture_png);
+    // Encoded once: texture.png and the glTF's embedded base colour are the same bytes.
+    texture_png = EncodeColorPng(
+        Encode(op->MapList(std::vector<Float3>(baked->radiance.data(), baked->radiance.data() + baked->radiance.size())),
+               atlas->width, atlas->height, ocio));
+    WriteFileAtomically(stage / "texture.png", std::string(texture_png.begin(), texture_png.end()));
     files.insert(files.end(), {"texture.exr", "texture.png"});
     tick("writing", 0.85);
   }

@@ -14,6 +14,7 @@
 
 #include "common/image.h"
 #include "io/keyframes_io.h"
+#include "pipeline/scan_session.h"
 #include "mesh/cleanup.h"
 #include "mesh/texture_bake.h"
 #include "mesh/uv_atlas.h"
@@ -47,6 +48,11 @@ struct ScanData {
 };
 // Throws InputError naming the file on anything missing or malformed.
 ScanData LoadScan(const std::filesystem::path& in);
+// A scan in memory (the studio, benchmarks): the mesh extracted now (`progress` as
+// Pipeline::ExtractMesh), the model rendered from the last pose as the tone reference,
+// copies of the keyframes.
+ScanData ScanDataFromSession(pipeline::ScanSession& session, const std::string& source,
+                             const std::function<bool(double)>& progress = {});
 
 struct AssetResult {
   std::vector<std::string> files;  // written, relative to the output folder

@@ -41,7 +41,7 @@ int AddAccessor(tinygltf::Model& model, int view, int component, int type, std::
 
 }  // namespace
 
-void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const ColorImage& base_colour,
+void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const std::vector<std::uint8_t>& png,
               mesh::UpAxis up, const std::string& radiance_units) {
   const mesh::Mesh& m = atlas.mesh;
   const std::size_t nv = m.position.size();
@@ -99,8 +99,7 @@ void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const
   prim.indices = AddAccessor(model, AddView(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
   // The texture: PNG bytes in the binary buffer.
-  if (base_colour.width() > 0) {
-    const std::vector<std::uint8_t> png = EncodeColorPng(base_colour);
+  if (!png.empty()) {
     tinygltf::Image img;
     img.name = "base_colour";
     img.mimeType = "image/png";

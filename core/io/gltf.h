@@ -4,7 +4,9 @@
 #pragma once
 
 #include <filesystem>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/image.h"
 #include "mesh/uv_atlas.h"
@@ -13,8 +15,9 @@
 namespace hdrf::io {
 
 // glTF is Y-up: a Z-up mesh (`up` = kZ) is turned (x, y, z) -> (x, z, -y) as it is written.
-// `radiance_units` goes in the asset's extras. Written through a temporary file and a rename.
-void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const ColorImage& base_colour,
+// `base_colour_png`: the texture's PNG bytes (none: no texture). `radiance_units` goes in
+// the asset's extras. Written through a temporary file and a rename.
+void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const std::vector<std::uint8_t>& base_colour_png,
               mesh::UpAxis up, const std::string& radiance_units);
 
 }  // namespace hdrf::io
