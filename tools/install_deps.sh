@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages HDRFusion needs to build and test, only those missing.
 # Run as root (or with sudo available). pfstools and pfstmo (GPL programs) are the tone-mapping
-# reference the tests run; nothing links them. The CUDA toolkit is optional and never installed
+# reference the tests run; nothing links them. assimp-utils is a third-party reader the
+# export tests read the OBJ and glTF back with. The CUDA toolkit is optional and never installed
 # here: when nvcc is present the CUDA backend is built, otherwise the CPU backend only.
 # --peers also installs the peers of the tracking benchmark (OpenCV contrib rgbd, Open3D),
 # so that hdrfusion-peers is built and `hdrfusion-experiments paper --peers ...` runs them.
