@@ -4,6 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
 #include <numbers>
 
 #include "mesh/cleanup.h"
@@ -160,6 +163,39 @@ TEST(MeshClean, ScannedRoomIsCleanAndLevel) {
               wf.Describe().c_str(), angle, est_camera_height, camera_height);
   EXPECT_LE(angle, 2.0);
   EXPECT_NEAR(est_camera_height, camera_height, 0.03);
+  // Pieces per real object or wall group: how much of every scene primitive (the room's
+  // walls are one group) lies on its largest piece. A vertex's primitive: the surface the
+  // scene finds along its normal.
+  std::vector<int> parent(c.mesh.position.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int v) { return parent[std::size_t(v)] == v ? v : parent[std::size_t(v)] = root(parent[std::size_t(v)]); };
+  for (const auto& t : c.mesh.triangles) {
+    parent[std::size_t(root(t[1]))] = root(t[0]);
+    parent[std::size_t(root(t[2]))] = root(t[0]);
+  }
+  const sim::Scene scene = sim::Scene::Build("room", sim::SimOptions().seed);
+  const RigidTransform Ts = ToRigidTransform(T0);
+  std::map<int, std::map<int, long>> pieces_of;  // primitive -> piece -> vertices
+  for (std::size_t v = 0; v < c.mesh.position.size(); ++v) {
+    const Float3 p = Ts.Apply(c.mesh.position[v]), n = Ts.Rotate(c.mesh.normal[v]);
+    const sim::Hit h = scene.Intersect(p + n * 0.03f, -n);
+    if (std::abs(h.t - 0.03f) > 0.02f) continue;
+    ++pieces_of[h.primitive][root(int(v))];
+  }
+  int objects = 0;
+  for (const auto& [prim, pieces] : pieces_of) {
+    long total = 0, largest = 0;
+    for (const auto& [piece, n] : pieces) total += n, largest = std::max(largest, n);
+    if (total < 200) continue;  // barely seen
+    ++objects;
+    std::printf("primitive %d: %ld vertices, %.1f %% on one piece (of %zu)\n", prim, total, 100.0 * double(largest) / double(total),
+                pieces.size());
+    // Measured: furniture 99.8-100 % on one piece; the walls (89.7 %, 4 pieces) and one box
+    // (92.3 %, 2 pieces) are split where the scan never saw what joins their parts. The
+    // goal of one piece each is not met yet (docs/export.md); this guards what holds.
+    EXPECT_GE(double(largest), 0.85 * double(total)) << "primitive " << prim << " is spread over pieces";
+  }
+  EXPECT_GE(objects, 3);
 }
 
 }  // namespace
