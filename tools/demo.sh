@@ -5,7 +5,8 @@
 # exposure) and starts scanning; the operator watches, pauses, exports.
 # Without a display (a server, CI, a container): says so and runs the same scan headless:
 # simulate the sequence, scan it with the HDRFusion engine (normalized radiance + ICP
-# tracking, TSDF + HDR radiance fusion, mesh), and measure the result against the truth.
+# tracking, TSDF + HDR radiance fusion, mesh), measure the result against the truth, and
+# export it as a textured HDR asset (docs/export.md).
 #   DEMO_HEADLESS=1 forces the headless run; FRAMES sets the length (150).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,4 +33,6 @@ if [ -e "$out" ]; then mv "$out" "$out.previous"; fi
 "$bin" info "$out/sequence"
 "$bin" scan "$out/sequence" --out "$out/scan" --device "$device"
 "$bin" eval "$out/sequence" "$out/scan"
-echo "demo: sequence in $out/sequence; mesh, trajectory, renders and report in $out/scan"
+"$bin" export "$out/scan" --out "$out/asset" --render 1280x960
+echo "demo: sequence in $out/sequence; mesh, trajectory, renders and report in $out/scan;"
+echo "demo: textured HDR asset (OBJ + EXR texture, glTF, PLY, render) in $out/asset"
