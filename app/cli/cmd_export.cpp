@@ -4,7 +4,6 @@
 // binary, renders with alpha and depth, and export.json recording every step.
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <unistd.h>
 
@@ -12,14 +11,10 @@
 #include "cli/interrupt.h"
 #include "io/asset_export.h"
 #include "common/error.h"
-#include "io/text_table.h"
 
 namespace hdrf::cli {
 
 namespace {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
-
 mesh::Box ParseBox(const std::string& text) {
   std::vector<float> v;
   std::stringstream s(text);

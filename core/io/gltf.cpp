@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "common/error.h"
-#include "io/image_io.h"
 #include "io/text_table.h"
 
 namespace hdrf::io {

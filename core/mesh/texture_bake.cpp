@@ -262,6 +262,8 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
       if (out.triangle(x, y) >= 0) ++per_chart[std::size_t(atlas.chart[std::size_t(out.triangle(x, y))])];
+  std::vector<int> all(vd.size());
+  for (std::size_t k = 0; k < vd.size(); ++k) all[k] = int(k);
   std::vector<Float3> small_sum(atlas.charts.size(), Float3{0, 0, 0});
   std::vector<float> small_w(atlas.charts.size(), 0);
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -274,8 +276,6 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
       const Float3 s = m.normal[std::size_t(tri[0])] + m.normal[std::size_t(tri[1])] + m.normal[std::size_t(tri[2])];
       if (Length(s) > 0) n = Normalized(s);
     }
-    std::vector<int> all(vd.size());
-    for (std::size_t k = 0; k < vd.size(); ++k) all[k] = int(k);
     Float3 sum{0, 0, 0};
     float wsum = 0;
     int count = 0;
