@@ -1,6 +1,7 @@
 #include "gui/main_window.h"
 
 #include "gui/export_dialog.h"
+#include "io/project.h"
 
 #include "calibration_wizard/calibration_wizard.h"
 
@@ -13,6 +14,8 @@
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
+#include <QLocale>
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
@@ -34,6 +37,7 @@
 #include <QVBoxLayout>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "common/cuda_runtime.h"
 #include "common/error.h"
@@ -142,18 +146,106 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   connect(worker_, &ScanWorker::finished, this, [this](int) {
     if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
   });
+  connect(worker_, &ScanWorker::projectSaved, this, [this](bool ok, const QString& path, const QString& msg) {
+    if (!ok) {
+      OnFailed(msg);
+      return;
+    }
+    project_path_ = path;
+    setWindowTitle(tr("HDRFusion Studio — %1").arg(QFileInfo(path).fileName()));
+    statusBar()->showMessage(msg, 15000);
+    if (!recovered_from_.isEmpty() && path != recovered_from_) {
+      std::error_code ec;
+      std::filesystem::remove(recovered_from_.toStdString(), ec);
+      recovered_from_.clear();
+    }
+  });
+  connect(worker_, &ScanWorker::projectOpened, this,
+          [this](const ScanSettings& s, const QString& path, const QString& msg) {
+            project_path_ = path;
+            setWindowTitle(tr("HDRFusion Studio — %1").arg(QFileInfo(path).fileName()));
+            // A recovered autosave is not the user's project: Save asks where, and the
+            // autosave goes once the scan is saved there.
+            if (std::filesystem::path(path.toStdString()).parent_path() == io::RecoveryFolder()) {
+              recovered_from_ = path;
+              project_path_.clear();
+              setWindowTitle(tr("HDRFusion Studio — recovered scan (not saved)"));
+            }
+            // The form and the source show what the project was scanned with.
+            if (source_->findText(QString::fromStdString(s.source)) < 0) source_->addItem(QString::fromStdString(s.source));
+            source_->setCurrentText(QString::fromStdString(s.source));
+            engine_->SetOptions(s.pipeline);
+            statusBar()->showMessage(msg, 30000);
+          });
   ConnectSensors();
   thread_.start();
   render_timer_ = new QTimer(this);
   connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
   render_timer_->start(33);
   ApplyEngineSettings();
+  if (!o.project.isEmpty()) OpenProject(o.project);
   if (o.autostart || !o.screenshot.isEmpty()) QTimer::singleShot(0, this, &MainWindow::StartScan);
+  if (o.offer_recovery && o.screenshot.isEmpty()) QTimer::singleShot(0, this, &MainWindow::OfferRecovery);
+}
+
+void MainWindow::OpenProject(const QString& path) {
+  error_->hide();
+  latest_.reset();
+  shown_.reset();
+  QMetaObject::invokeMethod(worker_, [w = worker_, path] { w->OpenProject(path); }, Qt::QueuedConnection);
+}
+
+void MainWindow::SaveProject(const QString& path) {
+  QString file = path;
+  if (file.isEmpty()) {
+    file = QFileDialog::getSaveFileName(this, tr("Save the scan as a project"),
+                                        project_path_.isEmpty() ? QStringLiteral("scan.hdrproj") : project_path_,
+                                        tr("HDRFusion projects (*.hdrproj)"));
+    if (file.isEmpty()) return;
+    if (!file.endsWith(QStringLiteral(".hdrproj"))) file += QStringLiteral(".hdrproj");
+  }
+  QMetaObject::invokeMethod(worker_, [w = worker_, file] { w->SaveProject(file); }, Qt::QueuedConnection);
+}
+
+QMessageBox* MainWindow::recovery_offer() const { return recovery_offer_.data(); }
+
+// A scan that did not end normally left its last autosave: offered once, without blocking
+// (open it, keep it for later, or delete it).
+void MainWindow::OfferRecovery() {
+  const std::vector<std::filesystem::path> found = io::FindRecoveryFiles();
+  if (found.empty()) return;
+  const QString file = QString::fromStdString(found.front().string());
+  const QDateTime when = QFileInfo(file).lastModified();
+  auto* box = new QMessageBox(QMessageBox::Question, tr("Recover a scan"),
+                              tr("A scan that did not finish was autosaved on %1:\n%2\n\nOpen it to continue or export "
+                                 "it?")
+                                  .arg(QLocale().toString(when, QLocale::ShortFormat), file),
+                              QMessageBox::NoButton, this);
+  QPushButton* open = box->addButton(tr("Open"), QMessageBox::AcceptRole);
+  QPushButton* discard = box->addButton(tr("Delete it"), QMessageBox::DestructiveRole);
+  box->addButton(tr("Later"), QMessageBox::RejectRole);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  connect(box, &QMessageBox::buttonClicked, this, [this, box, open, discard, file](QAbstractButton* b) {
+    if (b == open) {
+      OpenProject(file);
+    } else if (b == discard) {
+      std::error_code ec;
+      std::filesystem::remove(file.toStdString(), ec);
+    }
+    box->close();
+  });
+  recovery_offer_ = box;
+  box->setWindowModality(Qt::NonModal);
+  box->show();
 }
 
 MainWindow::~MainWindow() {
   hotplug_.reset();  // no more events into this window
-  if (worker_) QMetaObject::invokeMethod(worker_, &ScanWorker::Pause, Qt::BlockingQueuedConnection);
+  // A user's scan with frames not saved is autosaved for the next start; a scripted run
+  // (screenshots for tests and docs) leaves nothing behind.
+  if (worker_)
+    QMetaObject::invokeMethod(worker_, opts_.screenshot.isEmpty() ? &ScanWorker::Shutdown : &ScanWorker::Pause,
+                              Qt::BlockingQueuedConnection);
   thread_.quit();
   thread_.wait();
 }
@@ -268,6 +360,8 @@ void MainWindow::BuildStatus() {
   stages_ = new QLabel;
   stages_->setTextFormat(Qt::RichText);
   memory_ = new QLabel;
+  memory_->setObjectName("memory");
+  memory_->setWordWrap(true);
   plot_ = new ExposurePlot;
   for (QWidget* x : {static_cast<QWidget*>(frames_label_), static_cast<QWidget*>(health_),
                      static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_),
@@ -395,6 +489,14 @@ void MainWindow::BuildMenus() {
     const QString p = QFileDialog::getSaveFileName(this, tr("Export model render"), "render.exr", tr("OpenEXR (*.exr)"));
     if (!p.isEmpty()) emit exportRender(p);
   });
+  file->addAction(tr("&Open project…"), QKeySequence::Open, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open a scan project"), project_path_,
+                                                      tr("HDRFusion projects (*.hdrproj)"));
+    if (!path.isEmpty()) OpenProject(path);
+  });
+  file->addAction(tr("&Save project"), QKeySequence::Save, this, [this] { SaveProject(project_path_); });
+  file->addAction(tr("Save project &as…"), QKeySequence::SaveAs, this, [this] { SaveProject(QString()); });
+  file->addSeparator();
   file->addAction(tr("Save window screenshot…"), this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, tr("Screenshot"), "studio.png", tr("PNG (*.png)"));
     if (!p.isEmpty()) SaveScreenshot(p);
@@ -535,8 +637,12 @@ void MainWindow::Render() {
   const auto& im = s->images;
   const double t = s->report.timestamp;  // the frame's own time: the curve filters at the real frame rate
   // 2-D views (hidden docks are skipped: they cost nothing).
-  auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
-  RenderColourAndDepth(s);
+  // A project just opened has a model but no live frame: its views keep what they showed.
+  auto visible = [this, &im](const char* k) {
+    const bool live_view = std::strcmp(k, "model_radiance") != 0 && std::strcmp(k, "model_normals") != 0;
+    return docks_[k]->isVisible() && (!live_view || !im.radiance.empty());
+  };
+  if (!s->color.empty()) RenderColourAndDepth(s);
   if (visible("radiance")) {
     views_["radiance"]->SetImage(tone_->Map(im.radiance, ToneView::kLive, t), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
                                  [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });
@@ -608,7 +714,18 @@ void MainWindow::Render() {
                        .arg(m.convert, 0, 'f', 1).arg(m.normalize, 0, 'f', 1).arg(m.track, 0, 'f', 1)
                        .arg(m.compensate, 0, 'f', 1).arg(m.integrate, 0, 'f', 1).arg(m.raycast, 0, 'f', 1)
                        .arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
-  memory_->setText(tr("Volume: %1 MiB in %2 bricks").arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1).arg(s->bricks));
+  memory_->setText(tr("Volume: %1 of %2 MiB in %3 bricks")
+                       .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
+                       .arg(s->volume_budget_mb, 0, 'f', 0)
+                       .arg(s->bricks));
+  if (!s->volume_full.empty()) {
+    memory_->setText(memory_->text() + "\n" +
+                     tr("VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and "
+                        "exported.").arg(QString::fromStdString(s->volume_full)));
+    memory_->setStyleSheet("QLabel { color: white; background: #b06010; padding: 3px; }");
+  } else {
+    memory_->setStyleSheet(QString());
+  }
   plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
 }
 

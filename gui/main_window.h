@@ -21,6 +21,7 @@ class QSpinBox;
 class QSlider;
 class QTimer;
 class QDockWidget;
+class QMessageBox;
 
 namespace hdrf::wizard {
 class CalibrationWizard;
@@ -42,6 +43,8 @@ struct StudioOptions {
   QString device;            // "", "cpu" or "cuda"
   bool autostart = false;
   QString tone;              // non-empty: tone-mapping operator key, with optional ",key=value,..."
+  QString project;           // non-empty: open this project (.hdrproj) at start
+  bool offer_recovery = true;  // offer autosaves that a crash left (io::FindRecoveryFiles)
 };
 
 class MainWindow : public QMainWindow {
@@ -67,6 +70,12 @@ class MainWindow : public QMainWindow {
   class ExportDialog* OpenExportDialog();
   // Writes the window as PNG and per-view statistics as JSON beside it (PATH.json).
   bool SaveScreenshot(const QString& path);
+  // Project files: File > Open project, Save project (an empty path asks for one).
+  void OpenProject(const QString& path);
+  void SaveProject(const QString& path);
+  QString project_path() const { return project_path_; }
+  // The offer of an autosave a crash left behind (null when none is shown).
+  QMessageBox* recovery_offer() const;
 
  public slots:
   void StartScan();
@@ -107,8 +116,12 @@ class MainWindow : public QMainWindow {
   void OnFailed(const QString& message);
   void ApplyEngineSettings();
   void FinishScripted();
+  void OfferRecovery();
 
   StudioOptions opts_;
+  QString project_path_;
+  QString recovered_from_;  // the autosave opened from the recovery offer, until saved elsewhere
+  QPointer<QMessageBox> recovery_offer_;
   QThread thread_;
   ScanWorker* worker_ = nullptr;
   std::unique_ptr<ToneMapper> tone_;

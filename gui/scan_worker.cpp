@@ -2,7 +2,9 @@
 
 #include <QDateTime>
 #include <QTimer>
+#include <ctime>
 #include <filesystem>
+#include <unistd.h>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +13,7 @@
 #include "io/image_io.h"
 #include "io/ocio_display.h"
 #include "io/ply.h"
+#include "io/project.h"
 #include "tonemap/operator.h"
 #include "io/source_spec.h"
 #include "io/tum.h"
@@ -37,6 +40,21 @@ ScanWorker::~ScanWorker() {
 }
 
 namespace {
+
+// A recovery file for a new session: named after the studio, the time and the process.
+std::filesystem::path NewRecoveryFile() {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  std::strftime(stamp, sizeof stamp, "studio-%Y%m%d-%H%M%S", &tm);
+  return io::RecoveryFolder() / (std::string(stamp) + "-" + std::to_string(getpid()) + io::kProjectExtension);
+}
+
+bool SameCamera(const PinholeCamera& a, const PinholeCamera& b) {
+  return a.width == b.width && a.height == b.height && std::abs(a.fx - b.fx) < 1e-3f && std::abs(a.fy - b.fy) < 1e-3f &&
+         std::abs(a.cx - b.cx) < 1e-3f && std::abs(a.cy - b.cy) < 1e-3f;
+}
 
 QString Describe(const sensors::DeviceEntry& e) {
   return e.serial.empty() ? QString::fromStdString(e.name)
@@ -69,6 +87,126 @@ void ScanWorker::Open() {
   // only the model starts again.
   if (!(live_ && source_spec_ == settings_.source && !lost_)) OpenSource();
   session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+  // The previous model was dropped on purpose: so is its recovery file.
+  DropRecovery();
+  recovery_ = NewRecoveryFile();
+  saved_frames_ = saved_by_user_ = 0;
+  autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
+}
+
+void ScanWorker::DropRecovery() {
+  std::error_code ec;
+  if (!recovery_.empty()) std::filesystem::remove(recovery_, ec);
+}
+
+void ScanWorker::Autosave(bool force) {
+  if (!session_ || session_->frames() == 0 || session_->frames() == saved_frames_ || recovery_.empty()) return;
+  const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
+  if (!force && (settings_.autosave_s <= 0 || double(now - autosave_time_ms_) < 1000 * settings_.autosave_s)) return;
+  autosave_time_ms_ = now;
+  try {
+    std::filesystem::create_directories(recovery_.parent_path());
+    io::SaveProject(recovery_, *session_, {source_ ? source_->description() : std::string(), source_spec_, false});
+    saved_frames_ = session_->frames();
+  } catch (const std::exception& e) {
+    emit failed(tr("Autosave failed (the scan goes on): %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::SaveProject(const QString& path) {
+  if (!session_ || session_->frames() == 0) {
+    emit projectSaved(false, path, tr("Nothing to save: no frame has been scanned yet"));
+    return;
+  }
+  try {
+    const std::filesystem::path file = path.toStdString();
+    io::SaveProject(file, *session_, {source_ ? source_->description() : std::string(), source_spec_, true});
+    saved_frames_ = saved_by_user_ = session_->frames();
+    DropRecovery();
+    std::error_code ec;
+    emit projectSaved(true, path, tr("Saved %1 frames to %2 (%3 MiB)")
+                                      .arg(session_->frames())
+                                      .arg(path)
+                                      .arg(double(std::filesystem::file_size(file, ec)) / (1 << 20), 0, 'f', 1));
+  } catch (const std::exception& e) {
+    emit projectSaved(false, path, tr("Cannot save the project: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::OpenProject(const QString& path) {
+  running_ = false;
+  resume_ = false;
+  try {
+    const io::Project p = io::LoadProject(path.toStdString());
+    std::unique_ptr<pipeline::ScanSession> session = io::ResumeSession(p);
+    DropRecovery();
+    session_ = std::move(session);
+    mesh_.reset();
+    settings_.pipeline = session_->pipeline().options();
+    if (!p.source_spec.empty()) settings_.source = p.source_spec;
+    recovery_ = NewRecoveryFile();
+    saved_frames_ = saved_by_user_ = session_->frames();
+    autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
+    QString msg = tr("Opened %1: %2 frames").arg(path).arg(session_->frames());
+    const QString src = QString::fromStdString(p.source);
+    try {
+      if (p.source_spec.empty()) throw Error("the project does not say how its source was opened");
+      OpenSource();
+      if (!SameCamera(source_->sensor().camera, p.sensor.camera)) {
+        source_.reset();
+        live_ = nullptr;
+        msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");
+      } else if (source_->size() >= 0 && source_->description() == p.source) {
+        msg += source_->Skip(p.resume.frames) ? tr(" — Start continues after frame %1").arg(p.resume.frames)
+                                              : tr(" — its source has no frames left");
+      } else {
+        msg += tr(" — Start continues from the first frame of %1, which must be where the scan stopped")
+                   .arg(QString::fromStdString(source_->description()));
+      }
+    } catch (const std::exception& e) {
+      source_.reset();
+      live_ = nullptr;
+      msg += tr(" — its source (%1) cannot be opened: %2").arg(src, QString::fromStdString(e.what()));
+    }
+    Publish();
+    emit projectOpened(settings_, path, msg);
+    emit stateChanged(false, msg);
+  } catch (const std::exception& e) {
+    emit failed(tr("Cannot open the project: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
+void ScanWorker::Shutdown() {
+  running_ = false;
+  if (session_ && session_->frames() > saved_by_user_)
+    Autosave(true);
+  else
+    DropRecovery();
+}
+
+void ScanWorker::Publish() {
+  if (!session_) return;
+  auto s = std::make_shared<Snapshot>();
+  pipeline::Pipeline& pipe = session_->pipeline();
+  mesh_ = std::make_shared<const mesh::Mesh>(pipe.ExtractMesh());
+  mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
+  if (!session_->reports().empty()) s->report = session_->reports().back();
+  s->images.render = pipe.Render(pipe.pose());
+  s->camera = session_->sensor().camera;
+  s->trajectory = session_->poses();
+  for (const pipeline::FrameReport& r : session_->reports()) {
+    s->exposure_estimated.push_back(r.exposure_ratio);
+    s->exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+  }
+  s->mesh = mesh_;
+  const pipeline::VolumeStats vs = pipe.volume_stats();
+  s->volume_bytes = vs.bytes;
+  s->volume_full = vs.full_reason;
+  s->volume_budget_mb = pipe.options().volume.max_memory_mb;
+  s->bricks = vs.allocated_bricks;
+  s->frames_total = source_ ? source_->size() : -1;
+  s->device = DeviceName(pipe.device());
+  emit snapshot(std::move(s));
 }
 
 void ScanWorker::Configure(const ScanSettings& s) {
@@ -127,6 +265,10 @@ void ScanWorker::Start() {
       emit failed(tr("Cannot open the source: %1").arg(QString::fromStdString(e.what())));
       return;
     }
+  }
+  if (!source_) {
+    emit failed(tr("No source to continue from: choose one (Source) and Open the project again, or Reset"));
+    return;
   }
   if (running_) return;
   running_ = true;
@@ -197,12 +339,16 @@ void ScanWorker::Step() {
       s->exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
     }
     s->mesh = mesh_;
-    s->volume_bytes = pipe.volume_stats().bytes;
+    const pipeline::VolumeStats vs = pipe.volume_stats();
+    s->volume_bytes = vs.bytes;
+    s->volume_full = vs.full_reason;
+    s->volume_budget_mb = pipe.options().volume.max_memory_mb;
     s->bricks = s->report.allocated_bricks;
     s->frames_total = source_->size();
     s->device = DeviceName(pipe.device());
     if (live_) s->live = Status();
     emit snapshot(std::move(s));
+    Autosave(false);
   } catch (const sensors::DeviceLost&) {
     Lost();
   } catch (const std::exception& e) {

@@ -17,6 +17,7 @@
 #include <QImage>
 #include <QObject>
 #include <atomic>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -36,6 +37,9 @@ struct ScanSettings {
   // mesh_min_interval_ms (fast GPU scans would otherwise spend their time meshing).
   int mesh_every_frames = 15;
   int mesh_min_interval_ms = 500;
+  // Autosave of the scan to a recovery file (io/project.h) while scanning: every this many
+  // seconds (0: never).
+  double autosave_s = 60;
 };
 
 // A live camera's state, as the sensor panel shows it.
@@ -71,6 +75,8 @@ struct Snapshot {
   std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)
   std::shared_ptr<const mesh::Mesh> mesh;  // latest extracted mesh (may be older than the frame)
   std::size_t volume_bytes = 0, bricks = 0;
+  double volume_budget_mb = 0;       // volume.max_memory_mb
+  std::string volume_full;           // why the volume stopped growing ("" while it grows)
   int frames_total = -1;             // of the source (-1: unbounded)
   std::string device;                // "cpu" or "cuda"
 };
@@ -104,6 +110,14 @@ class ScanWorker : public QObject {
   // model's render from the current pose as the tone reference). Progress and the result
   // come as assetProgress / assetDone; CancelExport stops it, leaving the folder as it was.
   void ExportAsset(const QString& folder, const hdrf::io::AssetOptions& options);
+  // Project files (io/project.h). Save: the scan so far (answers with projectSaved). Open:
+  // a saved scan, its source reopened and, for the same recorded source, positioned after
+  // the frames already scanned; Start continues it (answers with projectOpened, or failed).
+  void SaveProject(const QString& path);
+  void OpenProject(const QString& path);
+  // Before the window closes: a scan with frames not yet saved is autosaved one last time
+  // (its recovery file is offered on the next start); a saved one leaves no recovery file.
+  void Shutdown();
   // Live camera: exposure controls (the ae/awb/exposure/gain parts; unset ones stay).
   void SetCameraControls(const hdrf::sensors::LiveOptions& controls);
   // Records what the camera delivers from now on (scanning or not): a sequence folder
@@ -128,6 +142,8 @@ class ScanWorker : public QObject {
   void recordingDone(bool ok, const QString& message);
   void cameraLost(const QString& message);  // the scan is paused, the model kept
   void cameraBack(const QString& message);
+  void projectSaved(bool ok, const QString& path, const QString& message);
+  void projectOpened(const hdrf::gui::ScanSettings& settings, const QString& path, const QString& message);
 
  private:
   void Kick();     // schedules Loop once
@@ -135,6 +151,9 @@ class ScanWorker : public QObject {
   void Step();
   void Preview();
   void Open();
+  void Autosave(bool force);  // to recovery_ when due (or now), if frames were added since
+  void DropRecovery();        // the recovery file is no longer needed
+  void Publish();             // a snapshot of the model as it stands (after opening a project)
   void OpenSource();
   void Lost();     // the camera was unplugged: pause, keep the model, wait for it
   void TryReconnect(int attempt);
@@ -154,6 +173,10 @@ class ScanWorker : public QObject {
   QString recording_path_;
   double fps_ = 0, last_frame_time_ = -1;
   std::unique_ptr<pipeline::ScanSession> session_;
+  std::filesystem::path recovery_;      // this session's recovery file (autosaves)
+  int saved_frames_ = 0;                // frames in the last save or autosave of this session
+  int saved_by_user_ = 0;               // frames in the last save the user asked for
+  std::int64_t autosave_time_ms_ = 0;
   std::shared_ptr<const mesh::Mesh> mesh_;
   std::int64_t mesh_time_ms_ = 0;
   bool running_ = false;

@@ -113,7 +113,6 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
         auto* w = new QSpinBox;
         w->setRange(int(std::max(s.min, -2e9)), int(std::min(s.max, 2e9)));
         if (!s.unit.empty()) w->setSuffix(QString::fromStdString(" " + s.unit));
-        if (s.key == "volume.resolution") w->setSingleStep(64);
         e.widget = w;
         e.get = [w] { return std::to_string(w->value()); };
         e.set = [w](const std::string& t) { w->setValue(int(std::stod(t))); };

@@ -17,7 +17,7 @@ frames=${FRAMES:-150}
 # The GPU when this build has CUDA and a GPU answers (a 5-frame probe), the CPU otherwise.
 device=${DEVICE:-cpu}
 if [ -z "${DEVICE:-}" ] && [ -x build/app/bench/hdrfusion-bench ] &&
-   build/app/bench/hdrfusion-bench --frames 5 --device cuda --case 64x48x64 2>/dev/null | grep -q "| cuda |"; then
+   build/app/bench/hdrfusion-bench --frames 5 --device cuda --case 64x48x40 2>/dev/null | grep -q "| cuda |"; then
   device=cuda
 fi
 if [ -z "${DEMO_HEADLESS:-}" ] && { [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; } && [ -x "$studio" ]; then

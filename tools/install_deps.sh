@@ -12,7 +12,7 @@ packages=(
   libeigen3-dev libgtest-dev libcli11-dev nlohmann-json3-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   libopencv-photo-dev
-  libopenexr-dev libopenni2-dev
+  libopenexr-dev zlib1g-dev libopenni2-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
   libmeshoptimizer-dev libtinygltf-dev
   assimp-utils

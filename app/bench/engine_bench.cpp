@@ -27,7 +27,7 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
       if (dev == Device::kCuda && !CudaAvailable()) continue;
       const std::size_t mem0 = dev == Device::kCuda ? CudaMemoryUsed() : 0;
       PipelineOptions po;
-      po.volume.resolution = c.resolution;
+      po.volume.voxel_m = float(c.voxel_mm / 1000);
       po.tracker.kind = o.tracker;
       po.device = dev;
       po.volume.encoding = enc;
@@ -79,15 +79,15 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
 
 std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows) {
   std::string out =
-      "| device | voxel | size | volume | convert | normalize | track | compensate | integrate | raycast | "
+      "| device | voxel | size | voxel size | convert | normalize | track | compensate | integrate | raycast | "
       "ms/frame | frames/s | bricks (visible/frame) | volume MiB | bytes/voxel | GPU MiB | ATE cm | mesh ms (triangles) |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   char line[512];
   for (const auto& r : rows) {
     std::snprintf(line, sizeof line,
-                  "| %s | %s | %dx%d | %d^3 | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu (%.0f) | %.1f | "
+                  "| %s | %s | %dx%d | %g mm | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu (%.0f) | %.1f | "
                   "%.1f | %s | %.2f | %.1f (%zu) |\n",
-                  DeviceName(r.device), volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.c.resolution, r.ms.convert, r.ms.normalize,
+                  DeviceName(r.device), volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.c.voxel_mm, r.ms.convert, r.ms.normalize,
                   r.ms.track, r.ms.compensate, r.ms.integrate, r.ms.raycast, r.wall_ms, r.fps, r.bricks,
                   r.visible_bricks, r.volume_mib, r.bytes_per_voxel,
                   r.device == Device::kCuda ? std::to_string(int(std::lround(r.gpu_mib))).c_str() : "-", r.ate_cm,

@@ -13,13 +13,14 @@
 namespace hdrf::pipeline {
 
 struct BenchCase {
-  int width, height, resolution;
+  int width, height;
+  double voxel_mm;
 };
 
 struct EngineBenchOptions {
   int frames = 60;                 // timed frames, after 5 warm-up frames
   std::vector<Device> devices = {Device::kCpu};
-  std::vector<BenchCase> cases = {{320, 240, 256}, {640, 480, 512}};
+  std::vector<BenchCase> cases = {{320, 240, 20}, {640, 480, 10}};
   tracking::TrackerKind tracker = tracking::TrackerKind::kNrIcp;
   std::vector<volume::VoxelEncoding> encodings = {volume::VoxelEncoding::kCompact};
 };
@@ -33,7 +34,7 @@ struct EngineBenchRow {
   double fps = 0;                  // 1000 / wall_ms
   std::size_t bricks = 0;          // allocated at the end
   double visible_bricks = 0;       // mean bricks integrated per frame
-  double volume_mib = 0;           // brick index + allocated voxels
+  double volume_mib = 0;           // hash tables + allocated voxels
   double bytes_per_voxel = 0;      // volume bytes / allocated voxels
   double gpu_mib = 0;              // GPU memory taken by the pipeline (CUDA rows)
   double ate_cm = 0;               // RMS error of the trajectory against the truth

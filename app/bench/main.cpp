@@ -1,6 +1,6 @@
 // hdrfusion-bench: the engine benchmark with nothing but the core (for core-only builds such
 // as the GPU machine's). `hdrfusion bench --suite engine` prints the same table.
-//   hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel E|all]
+//   hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxVOXEL_MM]... [--voxel E|all]
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -49,15 +49,15 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--case" && has_value) {
       pipeline::BenchCase c{};
-      if (std::sscanf(argv[++i], "%dx%dx%d", &c.width, &c.height, &c.resolution) != 3) {
-        std::fprintf(stderr, "hdrfusion-bench: --case wants WIDTHxHEIGHTxRESOLUTION, e.g. 640x480x512\n");
+      if (std::sscanf(argv[++i], "%dx%dx%lf", &c.width, &c.height, &c.voxel_mm) != 3 || !(c.voxel_mm >= 1 && c.voxel_mm <= 1000)) {
+        std::fprintf(stderr, "hdrfusion-bench: --case wants WIDTHxHEIGHTxVOXEL_MM, e.g. 640x480x10 (voxel 1 .. 1000 mm)\n");
         return 2;
       }
       if (!custom_cases) o.cases.clear();
       custom_cases = true;
       o.cases.push_back(c);
     } else {
-      std::fprintf(stderr, "usage: hdrfusion-bench [--suite engine|tonemap] [--frames N] [--device cpu|cuda|both] [--case WxHxRES]... [--voxel full|no-nr|compact|all]\n");
+      std::fprintf(stderr, "usage: hdrfusion-bench [--suite engine|tonemap] [--frames N] [--device cpu|cuda|both] [--case WxHxVOXEL_MM]... [--voxel full|no-nr|compact|all]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -91,8 +91,8 @@ int main(int argc, char** argv) {
               "GPU: %s\n\n", o.frames, gpu ? CudaDeviceDescription().c_str() : why.c_str());
   try {
     const auto rows = pipeline::RunEngineBench(o, [](const pipeline::EngineBenchRow& r) {
-      std::fprintf(stderr, "  done: %s %dx%d %d^3: %.1f frames/s\n", DeviceName(r.device), r.c.width, r.c.height,
-                   r.c.resolution, r.fps);
+      std::fprintf(stderr, "  done: %s %dx%d %g mm voxels: %.1f frames/s\n", DeviceName(r.device), r.c.width, r.c.height,
+                   r.c.voxel_mm, r.fps);
     });
     std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
   } catch (const std::exception& e) {

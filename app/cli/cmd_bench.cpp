@@ -136,8 +136,8 @@ Command AddBenchCommand(CLI::App& app) {
                   "frames rendered first (not timed), %d timed after 5 warm-up frames\n\n",
                   omp_get_max_threads(), gpu ? ", GPU " : "", gpu ? CudaDeviceDescription().c_str() : "", a->frames);
       const auto rows = pipeline::RunEngineBench(o, [](const pipeline::EngineBenchRow& r) {
-        std::fprintf(stderr, "bench: %s %dx%d %d^3 done: %.1f frames/s\n", DeviceName(r.device), r.c.width,
-                     r.c.height, r.c.resolution, r.fps);
+        std::fprintf(stderr, "bench: %s %dx%d %g mm voxels done: %.1f frames/s\n", DeviceName(r.device), r.c.width,
+                     r.c.height, r.c.voxel_mm, r.fps);
       });
       std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
       return 0;

@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "common/error.h"
 #include "eval/eval.h"
 #include "io/ply.h"
+#include "io/project.h"
+#include "mesh/mesh.h"
 #include "io/sequence.h"
 #include "io/text_table.h"
 #include "io/tum.h"
@@ -30,14 +33,23 @@ Command AddEvalCommand(CLI::App& app) {
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("eval", "Accuracy of a scan against the sequence's ground truth");
   cmd->add_option("SEQUENCE", a->seq, "The sequence that was scanned (with groundtruth.txt)")->required();
-  cmd->add_option("DIR", a->dir, "The scan's output folder (trajectory.txt, mesh.ply)")->required();
+  cmd->add_option("DIR", a->dir, "The scan's output folder (trajectory.txt, mesh.ply) or its project (.hdrproj; "
+                                  "eval.json is then written beside it as NAME.eval.json)")->required();
   return {cmd, [a] {
     io::SequenceReadOptions ro;
     ro.allow_missing_depth = true;
     const io::SequenceReader seq(a->seq, ro);
     if (!seq.has_groundtruth())
       throw InputError(fs::path(a->seq) / "groundtruth.txt", "file is missing: nothing to evaluate against");
-    const auto est = io::ReadTrajectory(fs::path(a->dir) / "trajectory.txt");
+    const bool is_project = fs::path(a->dir).extension() == io::kProjectExtension;
+    std::optional<io::Project> project;
+    std::vector<io::TimedPose> est;
+    if (is_project) {
+      project = io::LoadProject(a->dir);
+      for (const pipeline::FrameReport& r : project->reports) est.push_back({r.timestamp, r.T_world_camera});
+    } else {
+      est = io::ReadTrajectory(fs::path(a->dir) / "trajectory.txt");
+    }
     std::vector<double> gt_t;
     std::vector<Pose> gt_pose;
     for (const auto& f : seq.frames())
@@ -61,10 +73,10 @@ Command AddEvalCommand(CLI::App& app) {
     std::printf("trajectory: %zu frames, ATE RMSE %.4f m (median %.4f, max %.4f), RPE %.4f m / %.3f deg per frame\n",
                 te.pairs, te.ate_rmse_m, te.ate_median_m, te.ate_max_m, te.rpe_trans_rmse_m, te.rpe_rot_rmse_deg);
     const auto& syn = seq.sensor().synthetic;
-    const fs::path ply = fs::path(a->dir) / "mesh.ply";
-    if (syn && fs::exists(ply)) {
+    const fs::path ply = is_project ? fs::path() : fs::path(a->dir) / "mesh.ply";
+    if (syn && (is_project || fs::exists(ply)) && !g.empty()) {
       const sim::Scene scene = sim::Scene::Build(syn->scene, syn->seed);
-      const mesh::Mesh m = io::ReadPly(ply);
+      const mesh::Mesh m = is_project ? mesh::ExtractMesh(project->model) : io::ReadPly(ply);
       // The scan's world is the first scanned camera; ground truth maps it into the scene.
       const eval::ModelError me = eval::CompareModel(m, scene, g.front());
       out["mesh_vertices"] = me.vertices;
@@ -80,7 +92,8 @@ Command AddEvalCommand(CLI::App& app) {
                     me.radiance_median_stops, 100 * me.within_01_stop, 100 * me.within_025_stop);
       }
     }
-    io::WriteFileAtomically(fs::path(a->dir) / "eval.json", out.dump(1) + "\n");
+    const fs::path report = is_project ? fs::path(a->dir).replace_extension(".eval.json") : fs::path(a->dir) / "eval.json";
+    io::WriteFileAtomically(report, out.dump(1) + "\n");
     return 0;
   }};
 }

@@ -44,7 +44,7 @@ Command AddExportCommand(CLI::App& app) {
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("export", "Export a scan for other tools: cleaned, levelled mesh with an HDR texture "
                                            "(PLY, OBJ + MTL, glTF binary, OpenEXR), renders");
-  cmd->add_option("IN", a->in, "A scan output folder (hdrfusion scan --out) or an HDR PLY")->required();
+  cmd->add_option("IN", a->in, "A scan output folder (hdrfusion scan --out), a project (.hdrproj) or an HDR PLY")->required();
   cmd->add_option("--out", a->out, "Output folder (created; the files it names are replaced, nothing else is touched)")
       ->required();
   cmd->add_option("--formats", a->formats, "Comma-separated: ply, obj, gltf")->capture_default_str();

@@ -1,8 +1,15 @@
 // hdrfusion scan SOURCE --out DIR: the whole method on a sequence or the synthetic sensor.
-// Writes trajectory.txt, mesh.ply, renders (OpenEXR + PNG) and report.json. If the source
-// fails midway, what was built so far is still written, then the error is reported.
+// Writes trajectory.txt, mesh.ply, renders (OpenEXR + PNG), report.json and the project
+// (scan.hdrproj, or --save PATH) that --resume continues. If the source fails midway, or
+// Ctrl-C stops the scan, what was built so far is still written (and the error reported).
+// While it runs, the scan is autosaved to a recovery file (io/project.h) every --autosave
+// seconds; a scan that finishes removes it, one that crashed leaves it to be resumed.
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +26,8 @@
 #include "io/keyframes_io.h"
 #include "io/options_json.h"
 #include "io/ply.h"
+#include "io/project.h"
+#include "cli/interrupt.h"
 #include "io/text_table.h"
 #include "io/tum.h"
 #include "mesh/mesh.h"
@@ -71,6 +80,8 @@ Command AddScanCommand(CLI::App& app) {
     int max_frames = 0;
     std::string tone = "mantiuk08";
     bool frame_to_frame = false;
+    std::string save, resume;
+    double autosave_s = 60;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("scan", "Track, fuse and mesh a sequence or the synthetic sensor");
@@ -84,16 +95,29 @@ Command AddScanCommand(CLI::App& app) {
   cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
       ->check(CLI::IsMember({"srgb"}));
   cmd->add_option("--frames", a->max_frames, "Process at most this many frames");
+  cmd->add_option("--save", a->save, "Project file to save the scan to, to continue or export it later "
+                                     "(default OUT/scan.hdrproj)");
+  cmd->add_option("--resume", a->resume, "Continue the scan saved in this project file, in its coordinates and "
+                                         "with its settings, from SOURCE (the same sequence goes on where it stopped)");
+  cmd->add_option("--autosave", a->autosave_s, "Seconds between autosaves to the recovery file (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
   cmd->add_option("--tone", a->tone, "Tone mapping of the PNG renders and the PLY's display colours: OP[,key=value...] "
                                      "(see hdrfusion tonemap --list)")
       ->capture_default_str();
   auto flags = std::make_shared<SettingFlags>(cmd);
   return {cmd, [a, flags] {
-    pipeline::PipelineOptions o;
-    if (!a->options.empty()) io::ReadPipelineOptions(a->options, o);
-    if (a->frame_to_frame) o.tracker.frame_to_model = false;
-    flags->Apply(o);
-    o.Check();
+    // A resumed scan starts from its project's settings; files and flags apply on top.
+    std::optional<io::Project> project;
+    if (!a->resume.empty()) project = io::LoadProject(a->resume);
+    auto settings = [&](pipeline::PipelineOptions& o) {
+      if (!a->options.empty()) io::ReadPipelineOptions(a->options, o);
+      if (a->frame_to_frame) o.tracker.frame_to_model = false;
+      flags->Apply(o);
+      o.Check();
+    };
+    pipeline::PipelineOptions o = project ? project->options : pipeline::PipelineOptions{};
+    settings(o);
     // The tone mapping is checked before scanning: a typo must not cost a scan.
     const tonemap::Spec tone_spec = tonemap::ParseSpec(a->tone);
     const tonemap::OperatorDecl& tone_decl = tonemap::FindOperator(tone_spec.op);
@@ -104,46 +128,116 @@ Command AddScanCommand(CLI::App& app) {
     fs::create_directories(out, ec);
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
     for (const std::string& w : source->sensor().warnings) std::fprintf(stderr, "scan: warning: %s\n", w.c_str());
-    pipeline::ScanSession session(o, source->sensor().camera, source->sensor());
+    const fs::path save = a->save.empty() ? out / "scan.hdrproj" : fs::path(a->save);
+    // Unfinished scans a crash left behind are offered, newest first.
+    for (const fs::path& r : io::FindRecoveryFiles())
+      if (project == std::nullopt || fs::absolute(r) != fs::absolute(a->resume)) {
+        std::fprintf(stderr, "scan: an unfinished scan was autosaved to %s: continue it with "
+                             "hdrfusion scan --resume %s SOURCE --out DIR (or delete the file)\n",
+                     r.c_str(), r.c_str());
+        break;
+      }
+    std::unique_ptr<pipeline::ScanSession> owned;
+    if (project) {
+      const PinholeCamera& pc = project->sensor.camera;
+      const PinholeCamera& sc = source->sensor().camera;
+      if (pc.width != sc.width || pc.height != sc.height || std::abs(pc.fx - sc.fx) > 1e-3f ||
+          std::abs(pc.fy - sc.fy) > 1e-3f || std::abs(pc.cx - sc.cx) > 1e-3f || std::abs(pc.cy - sc.cy) > 1e-3f)
+        throw InputError(a->resume, "the project was scanned with a " + std::to_string(pc.width) + "x" +
+                                        std::to_string(pc.height) + " camera (fx " + std::to_string(pc.fx) +
+                                        "), SOURCE has a " + std::to_string(sc.width) + "x" +
+                                        std::to_string(sc.height) + " one (fx " + std::to_string(sc.fx) +
+                                        "): a scan goes on with the camera it began with");
+      owned = io::ResumeSession(*project, [&](pipeline::PipelineOptions& po) { po = o; });
+      // The same bounded source goes on where the scan stopped.
+      if (source->description() == project->source && source->size() >= 0) {
+        if (!source->Skip(project->resume.frames))
+          throw InputError(a->resume, "holds " + std::to_string(project->resume.frames) + " frames, more than " +
+                                          source->description() + " has: nothing left to scan");
+        std::fprintf(stderr, "scan: resuming %s after its %d frames\n", a->resume.c_str(), project->resume.frames);
+      } else {
+        std::fprintf(stderr, "scan: resuming %s (%d frames) from the first frame of %s: it must start where the "
+                             "scan stopped (the tracker starts from the last pose)\n",
+                     a->resume.c_str(), project->resume.frames, source->description().c_str());
+      }
+    } else {
+      owned = std::make_unique<pipeline::ScanSession>(o, source->sensor().camera, source->sensor());
+    }
+    pipeline::ScanSession& session = *owned;
     pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
-    const int total = a->max_frames > 0 ? (source->size() < 0 ? a->max_frames : std::min(a->max_frames, source->size()))
-                                        : source->size();
+    const int left = source->size() < 0 ? -1 : source->size() - (project && source->description() == project->source
+                                                                     ? project->resume.frames : 0);
+    const int total = a->max_frames > 0 ? (left < 0 ? a->max_frames : std::min(a->max_frames, left)) : left;
     if (total < 0)
-      throw SettingError("SOURCE", "a live source runs until stopped: give frames=N in its spec or --max-frames N");
-    std::fprintf(stderr, "scan: %s, %d frames, tracker %s, volume %d^3 over %.2f m (voxel %.1f mm), on the %s\n",
+      throw SettingError("SOURCE", "a live source runs until stopped: give frames=N in its spec or --frames N");
+    std::fprintf(stderr, "scan: %s, %d frames, tracker %s, unbounded volume, %.1f mm voxels, on the %s\n",
                  source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
-                 o.volume.resolution, o.volume.size_m, 1000 * o.volume.voxel_m(),
+                 1000 * o.volume.voxel_m,
                  pipe.device() == Device::kCuda ? ("GPU: " + CudaDeviceDescription()).c_str() : "CPU");
-    json frames = json::array();
-    std::string failure;
+    const std::string source_text = project ? project->source : source->description();
+    const std::string source_spec = project && source->description() == project->source ? project->source_spec : a->source;
+    // Autosaves go to a recovery file named after the project and the start time.
+    const fs::path recovery = [&] {
+      char stamp[32];
+      const std::time_t now = std::time(nullptr);
+      std::tm tm{};
+      gmtime_r(&now, &tm);
+      std::strftime(stamp, sizeof stamp, "-%Y%m%d-%H%M%S", &tm);
+      return io::RecoveryFolder() / (save.stem().string() + stamp + "-" + std::to_string(getpid()) + io::kProjectExtension);
+    }();
+    auto last_save = std::chrono::steady_clock::now();
+    std::string failure, autosave_failure;
+    bool stopped = false;
     Progress progress("scan", total);
-    try {
-      pipeline::FrameInput f;
-      for (int i = 0; i < total && source->Next(f); ++i) {
-        const pipeline::FrameReport& r = session.Process(f);
-        json fr = {{"index", r.index},
-                   {"timestamp", r.timestamp},
-                   {"ms", {{"convert", r.ms.convert}, {"normalize", r.ms.normalize}, {"track", r.ms.track},
-                           {"compensate", r.ms.compensate}, {"integrate", r.ms.integrate}, {"raycast", r.ms.raycast}}},
-                   {"tracking", {{"lost", r.tracking.lost}, {"why", r.tracking.why},
-                                 {"inlier_share", r.tracking.inlier_share}, {"condition", r.tracking.condition},
-                                 {"rms_icp_m", r.tracking.rms_icp_m}, {"rms_photo", r.tracking.rms_photo},
-                                 {"iterations", r.tracking.iterations}}},
-                   {"fused", r.fused},
-                   {"exposure", {{"estimated_ratio", r.exposure_ratio}, {"samples", r.exposure_samples}}}};
-        if (r.exposure_ratio_reported) fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
-        frames.push_back(fr);
-        if (r.tracking.lost)
-          std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
-        progress.Step();
+    {
+      StopOnInterrupt stop;  // Ctrl-C ends the scan early, keeping what it built
+      try {
+        pipeline::FrameInput f;
+        for (int i = 0; i < total && source->Next(f); ++i) {
+          const pipeline::FrameReport& r = session.Process(f);
+          if (r.tracking.lost)
+            std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
+          if (!r.volume_full.empty())
+            std::fprintf(stderr, "\nscan: warning: frame %d: the volume is full: %s. Surfaces not yet in the model are "
+                                 "no longer added; the model so far is kept and the scan goes on (raise "
+                                 "volume.max_memory_mb, or scan with larger voxels: volume.voxel_m)\n",
+                         r.index, r.volume_full.c_str());
+          progress.Step();
+          if (a->autosave_s > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_save).count() >=
+                                       a->autosave_s) {
+            try {
+              fs::create_directories(recovery.parent_path());
+              io::SaveProject(recovery, session, {source_text, source_spec, false});
+            } catch (const std::exception& e) {
+              if (autosave_failure.empty())
+                std::fprintf(stderr, "\nscan: warning: autosave failed: %s (the scan goes on)\n", e.what());
+              autosave_failure = e.what();
+            }
+            last_save = std::chrono::steady_clock::now();
+          }
+          if (stop.raised()) {
+            stopped = true;
+            break;
+          }
+        }
+      } catch (const std::exception& e) {
+        failure = e.what();
       }
-    } catch (const std::exception& e) {
-      failure = e.what();
     }
     progress.Done();
+    if (stopped) std::fprintf(stderr, "scan: stopped by Ctrl-C after %d frames; saving what was built\n", session.frames());
     const int n = session.frames();
     if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
+    // The project first: the model is the most expensive thing to lose.
+    const auto save_start = std::chrono::steady_clock::now();
+    io::SaveProject(save, session, {source_text, source_spec, failure.empty()});
+    std::error_code size_ec;
+    std::fprintf(stderr, "scan: saved the project %s (%.1f MiB, %.2f s)\n", save.c_str(),
+                 double(fs::file_size(save, size_ec)) / (1 << 20),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - save_start).count());
+    std::error_code rm_ec;
+    fs::remove(recovery, rm_ec);
     // Outputs: everything built so far.
     std::vector<io::TimedPose> trajectory;
     for (const pipeline::FrameReport& r : session.reports()) trajectory.push_back({r.timestamp, r.T_world_camera});
@@ -160,11 +254,13 @@ Command AddScanCommand(CLI::App& app) {
     WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose(), *tone, ocio);
     const std::vector<Rgb8> display = ocio.Encode(tone->MapList(m.radiance));
     io::WritePly(out / "mesh.ply", m, m.radiance.size() == m.position.size() ? &display : nullptr);
+    json frames = json::array();
+    for (const pipeline::FrameReport& r : session.reports()) frames.push_back(io::FrameReportToJson(r));
     const pipeline::StageTimes mean = session.mean_ms();
     const pipeline::VolumeStats vs = pipe.volume_stats();
     const int lost = session.lost();
     const std::optional<double> exp_err = session.exposure_median_relative_error();
-    json report = {{"source", source->description()},
+    json report = {{"source", source_text},
                    {"device", DeviceName(pipe.device())},
                    {"frames", n},
                    {"lost_frames", lost},
@@ -173,8 +269,10 @@ Command AddScanCommand(CLI::App& app) {
                                 {"compensate", mean.compensate}, {"integrate", mean.integrate},
                                 {"raycast", mean.raycast}, {"total", mean.total()}}},
                    {"fps", session.frames_per_second()},
-                   {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full}}},
+                   {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full},
+                               {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m}}},
                    {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
+                   {"project", save.string()},
                    {"frames_detail", frames}};
     if (exp_err) report["exposure_median_relative_error"] = *exp_err;
     if (!failure.empty()) report["error"] = failure;
@@ -183,8 +281,8 @@ Command AddScanCommand(CLI::App& app) {
                 session.frames_per_second(), m.position.size(), m.triangles.size());
     if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
     std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, keyframes/ (%zu), "
-                "keyframes.json, sensor.json, report.json}\n",
-                a->out.c_str(), session.keyframes().size());
+                "keyframes.json, sensor.json, report.json} and the project %s\n",
+                a->out.c_str(), session.keyframes().size(), save.c_str());
     if (!failure.empty())
       throw Error(failure + " (the model of the " + std::to_string(n) + " frames processed was saved in " + a->out + ")");
     return 0;

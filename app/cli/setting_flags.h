@@ -1,6 +1,6 @@
 // The engine's settings as command-line flags, generated from the settings registry
 // (pipeline/settings.h): `--<key> VALUE` for every setting, plus its short alias where it
-// has one (`--volume-res`). Values are checked by the registry, which names the key.
+// has one (`--voxel`). Values are checked by the registry, which names the key.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -26,6 +26,9 @@ class SettingFlags {
     std::string value;
   };
   std::deque<Flag> flags_;  // stable addresses: CLI11 writes into `value`
+  // Flags of settings that were removed (pipeline::RetiredSetting): refused with the reason.
+  std::deque<std::pair<CLI::Option*, std::string>> retired_;
+  std::string retired_value_;
 };
 
 }  // namespace hdrf::cli

@@ -154,12 +154,8 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
     for (const auto& f : frames) truth.push_back(T0inv * f.T_world_camera_true.value());
     // 2. Our trackers and the baselines.
     std::vector<Row> rows;
-    // Engine defaults (compact voxels, CPU) but a volume that holds the whole room: the
-    // default 6 m cube centred on the first camera leaves the far walls out, and a model
-    // with nothing in view loses frame-to-model tracking (docs/evaluation.md).
+    // Engine defaults (compact voxels, CPU, the unbounded volume holds the whole room).
     pipeline::PipelineOptions engine;
-    engine.volume.size_m = 10.f;
-    engine.volume.resolution = 512;
     for (std::size_t t = 0; t < trackers.size(); ++t) {
       const auto& spec = trackers[t];
       Progress p("tracking: " + ae + " " + std::to_string(t + 1) + "/" + std::to_string(trackers.size()) + " " +

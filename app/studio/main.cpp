@@ -36,7 +36,9 @@ int main(int argc, char** argv) {
   QCommandLineOption tone("tone", "Tone mapping: an operator (mantiuk08, mantiuk06, reinhard, exposure, linear), "
                                   "then parameters as key=value, comma-separated (see hdrfusion tonemap --list)",
                           "OP[,KEY=VALUE...]");
-  p.addOptions({source, frames, device, shot, start, tone});
+  QCommandLineOption project("project", "Open a saved scan (.hdrproj); Start continues it", "FILE");
+  QCommandLineOption no_recovery("no-recovery-offer", "Do not offer scans a crash left (autosaves)");
+  p.addOptions({source, frames, device, shot, start, tone, project, no_recovery});
   p.process(app);
   hdrf::gui::StudioOptions o;
   o.source = p.value(source);
@@ -45,6 +47,8 @@ int main(int argc, char** argv) {
   o.screenshot = p.value(shot);
   o.autostart = p.isSet(start);
   o.tone = p.value(tone);
+  o.project = p.value(project);
+  o.offer_recovery = !p.isSet(no_recovery);
   if (!o.device.isEmpty() && o.device != "cpu" && o.device != "cuda") {
     std::fprintf(stderr, "hdrfusion-studio: --device must be cpu or cuda\n");
     return 2;

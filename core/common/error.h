@@ -31,7 +31,7 @@ class InputError : public Error {
   int line_;
 };
 
-// A setting that cannot work, named as the user wrote it (e.g. "--volume-res").
+// A setting that cannot work, named as the user wrote it (e.g. "--voxel-size").
 class SettingError : public Error {
  public:
   SettingError(const std::string& setting, const std::string& what)

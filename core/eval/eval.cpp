@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "common/error.h"
 
@@ -127,6 +128,75 @@ ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose
   e.within_01_stop = share(0.1);
   e.within_025_stop = share(0.25);
   return e;
+}
+
+namespace {
+// Squared distance from p to triangle abc (closest point by region, after Ericson).
+double PointTriangleDistance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).squaredNorm();
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).squaredNorm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).squaredNorm();
+  const double denom = 1 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).squaredNorm();
+}
+}  // namespace
+
+Completeness SurfaceCompleteness(const mesh::Mesh& m, const std::vector<Float3>& points, double tol) {
+  if (!(tol > 0)) throw Error("completeness needs a positive tolerance");
+  // Triangles binned into cells of side `tol` by their bounding boxes; a point looks at the
+  // 27 cells around its own.
+  auto cell = [tol](double v) { return std::int64_t(std::floor(v / tol)); };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> grid;
+  auto V = [&](std::int32_t i) { const Float3& f = m.position[std::size_t(i)]; return Vec3(f.x, f.y, f.z); };
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tr = m.triangles[t];
+    Vec3 lo = V(tr[0]).cwiseMin(V(tr[1])).cwiseMin(V(tr[2])), hi = V(tr[0]).cwiseMax(V(tr[1])).cwiseMax(V(tr[2]));
+    for (std::int64_t z = cell(lo.z()); z <= cell(hi.z()); ++z)
+      for (std::int64_t y = cell(lo.y()); y <= cell(hi.y()); ++y)
+        for (std::int64_t x = cell(lo.x()); x <= cell(hi.x()); ++x) grid[key(x, y, z)].push_back(std::int32_t(t));
+  }
+  Completeness c;
+  c.points = points.size();
+  const double tol2 = tol * tol;
+  long within = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : within)
+  for (long i = 0; i < long(points.size()); ++i) {
+    const Vec3 p(points[std::size_t(i)].x, points[std::size_t(i)].y, points[std::size_t(i)].z);
+    const std::int64_t cx = cell(p.x()), cy = cell(p.y()), cz = cell(p.z());
+    bool hit = false;
+    for (int dz = -1; dz <= 1 && !hit; ++dz)
+      for (int dy = -1; dy <= 1 && !hit; ++dy)
+        for (int dx = -1; dx <= 1 && !hit; ++dx) {
+          const auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == grid.end()) continue;
+          for (const std::int32_t t : it->second) {
+            const auto& tr = m.triangles[std::size_t(t)];
+            if (PointTriangleDistance2(p, V(tr[0]), V(tr[1]), V(tr[2])) <= tol2) {
+              hit = true;
+              break;
+            }
+          }
+        }
+    within += hit;
+  }
+  c.within = std::size_t(within);
+  return c;
 }
 
 }  // namespace hdrf::eval

@@ -40,4 +40,12 @@ double RangeStops(std::vector<double> values, double lo = 0.01, double hi = 0.99
 ModelError CompareModel(const mesh::Mesh& m, const sim::Scene& scene, const Pose& T_scene_model,
                         std::size_t max_samples = 200000);
 
+// Surface completeness: the share of `points` (true surface samples, in the mesh's frame)
+// within `tolerance` metres of a mesh triangle (exact point-to-triangle distance).
+struct Completeness {
+  std::size_t points = 0, within = 0;
+  double fraction() const { return points ? double(within) / double(points) : 0.0; }
+};
+Completeness SurfaceCompleteness(const mesh::Mesh& m, const std::vector<Float3>& points, double tolerance);
+
 }  // namespace hdrf::eval

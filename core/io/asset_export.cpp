@@ -1,5 +1,7 @@
 #include "io/asset_export.h"
 
+#include "io/project.h"
+
 #include <unistd.h>
 
 #include <atomic>
@@ -44,6 +46,20 @@ void AssetOptions::Check() const {
 ScanData LoadScan(const fs::path& in) {
   ScanData s;
   s.source = in;
+  if (in.extension() == kProjectExtension) {
+    // A project: the mesh extracted from its model, the model rendered from the last pose.
+    Project p = LoadProject(in);
+    s.mesh = mesh::ExtractMesh(p.model);
+    if (s.mesh.triangles.empty()) throw InputError(in, "the model holds no surface: nothing to export");
+    s.tone_reference = p.model.Raycast(p.sensor.camera, p.resume.pose).radiance;
+    KeyframeSet ks;
+    ks.keyframes = std::move(p.keyframes);
+    ks.sensor = p.sensor;
+    ks.pcf_power = p.options.pcf;
+    s.keyframes = std::move(ks);
+    for (const pipeline::FrameReport& r : p.reports) s.trajectory.push_back(r.T_world_camera);
+    return s;
+  }
   const bool dir = fs::is_directory(in);
   const fs::path ply = dir ? in / "mesh.ply" : in;
   if (!fs::exists(ply))

@@ -38,7 +38,7 @@ struct AssetOptions {
   void Check() const;                       // throws SettingError naming the option
 };
 
-// What an export starts from: a scan output folder or an HDR PLY.
+// What an export starts from: a scan output folder, a project file (.hdrproj) or an HDR PLY.
 struct ScanData {
   std::filesystem::path source;
   mesh::Mesh mesh;

@@ -100,6 +100,18 @@ std::vector<std::uint8_t> EncodeColorPng(const ColorImage& image) {
   return out;
 }
 
+ColorImage DecodeColorPng(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes,
+                          const std::string& what) {
+  const cv::Mat m = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  if (m.empty() || m.depth() != CV_8U || m.channels() != 3)
+    throw InputError(file, what + " is not an 8-bit RGB PNG image");
+  cv::Mat rgb;
+  cv::cvtColor(m, rgb, cv::COLOR_BGR2RGB);
+  ColorImage out(rgb.cols, rgb.rows);
+  for (int y = 0; y < rgb.rows; ++y) std::memcpy(&out(0, y), rgb.ptr<std::uint8_t>(y), std::size_t(rgb.cols) * 3);
+  return out;
+}
+
 void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image) {
   cv::Mat m(image.height(), image.width(), CV_16UC1, const_cast<std::uint16_t*>(image.data()));
   Save(file, m);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "common/image.h"
@@ -21,6 +22,10 @@ void WriteColorPng(const std::filesystem::path& file, const ColorImage& image);
 void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image);
 // The PNG bytes of a colour image (for containers such as glTF binaries).
 std::vector<std::uint8_t> EncodeColorPng(const ColorImage& image);
+// The reverse, from bytes held inside `file` (project files); throws InputError naming the
+// file and `what` where the bytes are no 8-bit RGB image.
+ColorImage DecodeColorPng(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes,
+                          const std::string& what);
 
 // Raw depth to metres (0 stays 0 = no data).
 DepthImage DepthToMetres(const DepthRawImage& raw, double scale);

@@ -72,6 +72,8 @@ void Apply(const std::filesystem::path& file, pipeline::PipelineOptions& o, cons
     for (const Setting& c : pipeline::Settings())
       if (c.key.rfind(key + ".", 0) == 0)
         throw InputError(file, "'" + key + "' is a section: it must be an object of settings, found " + v.dump());
+    if (const std::string why = pipeline::RetiredSetting(k); !why.empty())
+      throw InputError(file, "setting '" + k + "' " + why);
     throw InputError(file, "unknown setting '" + key + "'");
   }
   try {
@@ -86,7 +88,10 @@ void Apply(const std::filesystem::path& file, pipeline::PipelineOptions& o, cons
 }  // namespace
 
 void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOptions& o) {
-  const json j = ReadJsonFile(file);
+  ApplyPipelineOptionsJson(file, ReadJsonFile(file), o);
+}
+
+void ApplyPipelineOptionsJson(const std::filesystem::path& file, const json& j, pipeline::PipelineOptions& o) {
   if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (it.value().is_object()) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "pipeline/pipeline.h"
@@ -11,6 +12,9 @@
 namespace hdrf::io {
 
 void ReadPipelineOptions(const std::filesystem::path& file, pipeline::PipelineOptions& options);
+// The same from a JSON value held inside `file` (project files).
+void ApplyPipelineOptionsJson(const std::filesystem::path& file, const nlohmann::json& j,
+                              pipeline::PipelineOptions& options);
 std::string PipelineOptionsToJson(const pipeline::PipelineOptions& options);
 
 }  // namespace hdrf::io

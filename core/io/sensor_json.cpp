@@ -52,9 +52,10 @@ std::array<float, 3> Triple(const std::filesystem::path& file, const json& v,
 
 }  // namespace
 
-SensorInfo ReadSensorJson(const std::filesystem::path& file) {
-  const json j = ReadJsonFile(file);
-  if (!j.is_object()) throw InputError(file, "top level must be a JSON object");
+SensorInfo ReadSensorJson(const std::filesystem::path& file) { return SensorFromJson(file, ReadJsonFile(file)); }
+
+SensorInfo SensorFromJson(const std::filesystem::path& file, const json& j) {
+  if (!j.is_object()) throw InputError(file, "the sensor must be a JSON object");
 
   SensorInfo s;
   const json& cam = Require(file, j, "camera", "");
@@ -139,12 +140,17 @@ SensorInfo ReadSensorJson(const std::filesystem::path& file) {
 }
 
 void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
+  WriteFileAtomically(file, SensorToJson(s, file.string()).dump(2) + "\n");
+}
+
+json SensorToJson(const SensorInfo& s, const std::string& what) {
+  const std::string& file = what;
   json j;
   j["camera"] = {{"width", s.camera.width}, {"height", s.camera.height}, {"fx", s.camera.fx},
                  {"fy", s.camera.fy},       {"cx", s.camera.cx},         {"cy", s.camera.cy}};
   j["depth"] = {{"scale", s.depth_scale}};
   if (s.response) {
-    s.response->Check(file.string());
+    s.response->Check(file);
     const char* ch[3] = {"r", "g", "b"};
     json inv;
     for (int c = 0; c < 3; ++c)
@@ -152,7 +158,7 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
     j["response"] = {{"inverse", inv}};
   }
   if (s.noise) {
-    s.noise->Check(file.string());
+    s.noise->Check(file);
     j["noise"] = {{"sigma_s", s.noise->sigma_s}, {"sigma_c", s.noise->sigma_c}};
   }
   if (s.synthetic) j["hdrfusion"]["synthetic"] = {{"scene", s.synthetic->scene}, {"seed", s.synthetic->seed}};
@@ -162,7 +168,7 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
     if (s.device->exposure_ms_per_unit) dev["exposure_ms_per_unit"] = *s.device->exposure_ms_per_unit;
     j["hdrfusion"]["device"] = dev;
   }
-  WriteFileAtomically(file, j.dump(2) + "\n");
+  return j;
 }
 
 }  // namespace hdrf::io

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
 
 #include "radiometry/sensor.h"
 
@@ -11,5 +13,10 @@ namespace hdrf::io {
 SensorInfo ReadSensorJson(const std::filesystem::path& file);
 
 void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& sensor);
+
+// The same, as a JSON value inside another file (project files): errors name `file`;
+// `what` names the sensor in the writer's messages.
+SensorInfo SensorFromJson(const std::filesystem::path& file, const nlohmann::json& j);
+nlohmann::json SensorToJson(const SensorInfo& sensor, const std::string& what);
 
 }  // namespace hdrf::io

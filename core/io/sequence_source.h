@@ -31,6 +31,11 @@ class SequenceFrameSource : public pipeline::FrameSource {
                                "radiance is only as good as that guess");
   }
   std::string description() const override { return "sequence " + seq_.folder().string(); }
+  bool Skip(int n) override {
+    if (n < 0 || next_ + std::size_t(n) > seq_.size()) return false;
+    next_ += std::size_t(n);
+    return true;
+  }
   const SequenceReader& reader() const { return seq_; }
 
  private:

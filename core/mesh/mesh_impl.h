@@ -12,22 +12,29 @@
 
 namespace hdrf::mesh {
 
-// Edge between voxels a and b (neighbours, diagonals included): the lower voxel id times 27
-// plus the offset code (-1..1 per axis) to the other.
-HDRF_HD std::uint64_t EdgeKey(int n, const int a[3], const int b[3]) {
-  const std::uint64_t ia = (std::uint64_t(a[2]) * std::uint64_t(n) + std::uint64_t(a[1])) * std::uint64_t(n) + std::uint64_t(a[0]);
-  const std::uint64_t ib = (std::uint64_t(b[2]) * std::uint64_t(n) + std::uint64_t(b[1])) * std::uint64_t(n) + std::uint64_t(b[0]);
+// Voxel coordinates span [-kVoxelRange, kVoxelRange) (the volume's brick range), 19 bits each
+// once offset.
+inline constexpr int kVoxelRange = volume::kBrickRange * volume::kBrick;
+HDRF_HD std::uint64_t VoxelId(const int v[3]) {
+  return (std::uint64_t(unsigned(v[2] + kVoxelRange)) << 38) | (std::uint64_t(unsigned(v[1] + kVoxelRange)) << 19) |
+         std::uint64_t(unsigned(v[0] + kVoxelRange));
+}
+
+// Edge between voxels a and b (neighbours, diagonals included): the lower voxel id (z, y, x
+// order) times 27 plus the offset code (-1..1 per axis) to the other; below 2^62.
+HDRF_HD std::uint64_t EdgeKey(const int a[3], const int b[3]) {
+  const std::uint64_t ia = VoxelId(a), ib = VoxelId(b);
   const int* lo = ia < ib ? a : b;
   const int* hi = ia < ib ? b : a;
   const int code = (hi[0] - lo[0] + 1) + 3 * (hi[1] - lo[1] + 1) + 9 * (hi[2] - lo[2] + 1);
   return (ia < ib ? ia : ib) * 27u + std::uint64_t(code);
 }
-HDRF_HD void DecodeEdgeKey(int n, std::uint64_t key, int lo[3], int hi[3]) {
+HDRF_HD void DecodeEdgeKey(std::uint64_t key, int lo[3], int hi[3]) {
   const int code = int(key % 27u);
   const std::uint64_t id = key / 27u;
-  lo[0] = int(id % std::uint64_t(n));
-  lo[1] = int((id / std::uint64_t(n)) % std::uint64_t(n));
-  lo[2] = int(id / (std::uint64_t(n) * std::uint64_t(n)));
+  lo[0] = int(id & 0x7ffffu) - kVoxelRange;
+  lo[1] = int((id >> 19) & 0x7ffffu) - kVoxelRange;
+  lo[2] = int((id >> 38) & 0x7ffffu) - kVoxelRange;
   hi[0] = lo[0] + code % 3 - 1;
   hi[1] = lo[1] + (code / 3) % 3 - 1;
   hi[2] = lo[2] + code / 9 - 1;
@@ -65,7 +72,7 @@ HDRF_HD int CubeTriangles(const volume::VolumeView<V>& vol, int x, int y, int z,
       else out[no++] = k;
     }
     if (ni == 0 || no == 0) continue;
-    auto key = [&](int a, int b) { return EdgeKey(vol.n, ix[a], ix[b]); };
+    auto key = [&](int a, int b) { return EdgeKey(ix[a], ix[b]); };
     if (ni == 1) {
       tri[nt][0] = key(in[0], out[0]);
       tri[nt][1] = key(in[0], out[1]);
@@ -97,13 +104,13 @@ HDRF_HD int CubeTriangles(const volume::VolumeView<V>& vol, int x, int y, int z,
 template <typename V>
 HDRF_HD void EdgeVertex(const volume::VolumeView<V>& vol, std::uint64_t key, Float3* p, Float3* nrm, Float3* rad) {
   int lo[3], hi[3];
-  DecodeEdgeKey(vol.n, key, lo, hi);
+  DecodeEdgeKey(key, lo, hi);
   const volume::Voxel a = vol.Get(lo[0], lo[1], lo[2])->Decode();
   const volume::Voxel b = vol.Get(hi[0], hi[1], hi[2])->Decode();
   const float t = a.tsdf / (a.tsdf - b.tsdf);
   const float vs = vol.voxel_m;
-  const Float3 pa = vol.origin + Float3{(float(lo[0]) + 0.5f) * vs, (float(lo[1]) + 0.5f) * vs, (float(lo[2]) + 0.5f) * vs};
-  const Float3 pb = vol.origin + Float3{(float(hi[0]) + 0.5f) * vs, (float(hi[1]) + 0.5f) * vs, (float(hi[2]) + 0.5f) * vs};
+  const Float3 pa = Float3{(float(lo[0]) + 0.5f) * vs, (float(lo[1]) + 0.5f) * vs, (float(lo[2]) + 0.5f) * vs};
+  const Float3 pb = Float3{(float(hi[0]) + 0.5f) * vs, (float(hi[1]) + 0.5f) * vs, (float(hi[2]) + 0.5f) * vs};
   *p = pa + (pb - pa) * t;
   *nrm = {0, 0, 1};
   vol.Gradient(*p, nrm);

@@ -77,6 +77,7 @@ class Backend {
   virtual std::size_t LastVisibleBricks() = 0;  // bricks updated by the last Integrate
   virtual std::size_t VolumeBytes() = 0;
   virtual bool VolumeFull() = 0;  // allocation stopped at the memory limit
+  virtual std::string VolumeFullReason() = 0;  // why, naming the limit ("" while not full)
   // 6. Ray casts the model from a pose (kept as the last rendering).
   virtual void Raycast(const Pose& T_world_camera) = 0;
   virtual bool HasRender() const = 0;
@@ -93,6 +94,9 @@ class Backend {
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;
   // The whole model as a host volume (on CUDA: a download of every allocated brick).
   virtual const volume::Volume& DownloadVolume() = 0;
+  // Replaces the model with a host volume of the same voxel size, truncation and encoding (a
+  // project reopened); the last rendering and the reference are dropped.
+  virtual void LoadVolume(const volume::Volume& model) = 0;
   // The model's surface (marching tetrahedra, mesh_impl.h), extracted where the model lives.
   // `progress(fraction)` returning false cancels: hdrf::Cancelled is thrown.
   virtual mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) = 0;

@@ -92,6 +92,7 @@ class CpuBackend final : public Backend {
   std::size_t AllocatedBricks() override { return volume_.allocated_bricks(); }
   std::size_t VolumeBytes() override { return volume_.bytes(); }
   bool VolumeFull() override { return volume_.full(); }
+  std::string VolumeFullReason() override { return volume_.full_reason(); }
 
   void Raycast(const Pose& T) override {
     render_ = Render(T);
@@ -125,6 +126,11 @@ class CpuBackend final : public Backend {
     return r;
   }
   const volume::Volume& DownloadVolume() override { return volume_; }
+  void LoadVolume(const volume::Volume& model) override {
+    volume_.Assign(model.pool(), model.bricks(), model.full_reason());
+    has_render_ = false;
+    reference_ = {};
+  }
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
     if (!progress) return mesh::ExtractMesh(volume_);
     return mesh::ExtractMesh(

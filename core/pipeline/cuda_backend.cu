@@ -138,7 +138,7 @@ class CudaBackend final : public Backend {
   }
 
   void Integrate(const Pose& T, float ratio) override {
-    volume::IntegrateArgs a = volume::Volume::MakeIntegrateArgs(o_.volume, volume_.origin(), cam_, T, ratio);
+    volume::IntegrateArgs a = volume::Volume::MakeIntegrateArgs(o_.volume, cam_, T, ratio);
     a.depth = depth_.view();
     a.normals = live_[0]->normal.view();
     a.radiance = radiance_.view();
@@ -151,6 +151,7 @@ class CudaBackend final : public Backend {
   std::size_t LastVisibleBricks() override { return volume_.last_visible_bricks(); }
   std::size_t VolumeBytes() override { return volume_.bytes(); }
   bool VolumeFull() override { return volume_.full(); }
+  std::string VolumeFullReason() override { return volume_.full_reason(); }
 
   void Raycast(const Pose& T) override {
     RaycastInto(render_, T);
@@ -186,6 +187,11 @@ class CudaBackend final : public Backend {
     return tmp.ToHost();
   }
   const volume::Volume& DownloadVolume() override { return volume_.Download(); }
+  void LoadVolume(const volume::Volume& model) override {
+    volume_.Upload(model);
+    has_render_ = false;
+    has_reference_ = false;
+  }
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
     // On the GPU the extraction takes milliseconds: progress at its start and end only.
     if (progress && !progress(0.0)) throw Cancelled();

@@ -19,6 +19,14 @@ class FrameSource {
   virtual bool Next(FrameInput& frame) = 0;     // false when exhausted; throws on bad data
   virtual const SensorInfo& sensor() const = 0;
   virtual std::string description() const = 0;
+  // Passes over the next n frames (a resumed scan starts where it stopped); false where the
+  // source ran out first. Reads and drops them unless a source can seek.
+  virtual bool Skip(int n) {
+    FrameInput f;
+    for (int i = 0; i < n; ++i)
+      if (!Next(f)) return false;
+    return true;
+  }
 };
 
 // The synthetic sensor as a frame source (exposures and true poses attached).

@@ -1,5 +1,6 @@
 #include "pipeline/keyframes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -37,6 +38,18 @@ bool KeyframeSelector::Offer(const FrameReport& r, const ColorImage& color) {
     ++thinned_;
   }
   return true;
+}
+
+void KeyframeSelector::Restore(std::vector<Keyframe> keyframes, int thinned) {
+  if (thinned < 0 || thinned > 30) throw Error("a keyframe set cannot have been halved " + std::to_string(thinned) + " times");
+  keyframes_ = std::move(keyframes);
+  thinned_ = thinned;
+  step_m_ = o_.min_translation_m;
+  step_deg_ = o_.min_rotation_deg;
+  for (int i = 0; i < thinned; ++i) {
+    step_m_ = 2 * std::max(step_m_, 0.01);
+    step_deg_ = 2 * std::max(step_deg_, 1.0);
+  }
 }
 
 std::vector<mesh::BakeView> MakeBakeViews(const std::vector<Keyframe>& keyframes, const SensorInfo& sensor,

@@ -38,6 +38,8 @@ class KeyframeSelector {
   bool Offer(const FrameReport& report, const ColorImage& color);
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   int thinned() const { return thinned_; }  // how many times the set was halved
+  // Takes up a saved set (a project reopened): its keyframes and how often it was halved.
+  void Restore(std::vector<Keyframe> keyframes, int thinned);
 
  private:
   KeyframeOptions o_;

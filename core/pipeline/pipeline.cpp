@@ -71,7 +71,7 @@ mesh::Mesh Pipeline::ExtractMesh(const std::function<bool(double)>& progress) {
   return backend_->ExtractMesh(progress);
 }
 VolumeStats Pipeline::volume_stats() const {
-  return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull()};
+  return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull(), backend_->VolumeFullReason()};
 }
 FrameViews Pipeline::DownloadViews() { return backend_->DownloadViews(); }
 
@@ -135,6 +135,10 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     rep.fused = true;
   }
   rep.allocated_bricks = b.AllocatedBricks();
+  if (!full_reported_ && rep.fused && b.VolumeFull()) {
+    rep.volume_full = b.VolumeFullReason();
+    full_reported_ = true;
+  }
   const auto t5 = now();
   // 6. Ray cast the model from the new pose, and the next frame's reference: the ray cast
   // (frame to model) or this frame where it was tracked (frame to frame).
@@ -143,11 +147,65 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     b.ReferenceFromRender();
   } else if (!rep.tracking.lost || !b.HasReference()) {
     b.ReferenceFromLive(pose_);
+    reference_color_ = in.color.Clone();
+    reference_depth_ = in.depth_m.Clone();
   }
   const auto t6 = now();
   rep.ms = {Ms(t0, t1), Ms(t1, t2), Ms(t2, t3), Ms(t3, t4), Ms(t4, t5), Ms(t5, t6)};
   ++index_;
   return rep;
+}
+
+ResumePoint Pipeline::resume_point() const {
+  ResumePoint p;
+  p.frames = index_;
+  p.pose = pose_;
+  p.previous_pose = previous_pose_;
+  p.first_exposure_ms = first_exposure_ms_;
+  if (!reference_from_model_) {
+    p.reference_color = reference_color_.Clone();
+    p.reference_depth = reference_depth_.Clone();
+  }
+  return p;
+}
+
+void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
+  if (index_ != 0) throw Error("a scan can only be resumed on a fresh pipeline (this one has run " +
+                               std::to_string(index_) + " frames)");
+  const volume::VolumeOptions& m = model.options();
+  const volume::VolumeOptions& v = o_.volume;
+  if (m.voxel_m != v.voxel_m || m.truncation_voxels != v.truncation_voxels || m.encoding != v.encoding)
+    throw Error("the saved model has " + std::to_string(1000 * m.voxel_m) + " mm voxels, truncation " +
+                std::to_string(m.truncation_voxels) + " voxels, " + volume::VoxelEncodingName(m.encoding) +
+                " encoding; the settings ask for " + std::to_string(1000 * v.voxel_m) + " mm, " +
+                std::to_string(v.truncation_voxels) + ", " + volume::VoxelEncodingName(v.encoding) +
+                ": resume with the project's own settings");
+  if (p.frames < 0) throw Error("a resume point cannot have a negative frame count");
+  const bool need_frame = !reference_from_model_ && p.frames > 0;
+  if (need_frame && (p.reference_color.width() != cam_.width || p.reference_color.height() != cam_.height ||
+                     p.reference_depth.width() != cam_.width || p.reference_depth.height() != cam_.height))
+    throw Error("this scan tracks frame to frame, and its resume point has no " + std::to_string(cam_.width) + "x" +
+                std::to_string(cam_.height) + " reference frame");
+  Backend& b = *backend_;
+  b.LoadVolume(model);
+  pose_ = p.pose;
+  previous_pose_ = p.previous_pose;
+  index_ = p.frames;
+  first_exposure_ms_ = p.first_exposure_ms;
+  full_reported_ = model.full();
+  if (p.frames == 0) return;
+  // The state the last Process() left: the ray cast from the last pose, and the reference.
+  if (model.allocated_bricks() > 0) b.Raycast(pose_);
+  if (reference_from_model_) {
+    if (b.HasRender()) b.ReferenceFromRender();
+  } else {
+    b.Convert(p.reference_color, p.reference_depth);
+    b.Normalize();
+    b.BuildLive();
+    b.ReferenceFromLive(pose_);
+    reference_color_ = p.reference_color.Clone();
+    reference_depth_ = p.reference_depth.Clone();
+  }
 }
 
 }  // namespace hdrf::pipeline

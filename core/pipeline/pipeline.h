@@ -49,11 +49,29 @@ struct FrameReport {
   long exposure_samples = 0;
   StageTimes ms;
   std::size_t allocated_bricks = 0;
+  // Set on the one frame at which the volume became full: why (its memory budget, or the
+  // memory the system or GPU had free). From then on surfaces not yet in the model are not
+  // added; tracking and fusion into the bricks it has go on.
+  std::string volume_full;
 };
 
 struct VolumeStats {
   std::size_t allocated_bricks = 0, bytes = 0;
   bool full = false;  // allocation stopped at the memory limit
+  std::string full_reason;
+};
+
+// Where a scan stopped, beside its model: what Pipeline::Resume needs to go on exactly as
+// if it had never stopped (project files hold it).
+struct ResumePoint {
+  int frames = 0;                               // frames processed so far
+  Pose pose = Pose::Identity();                 // the last tracked pose...
+  Pose previous_pose = Pose::Identity();        // ...and the one before (motion prediction)
+  std::optional<double> first_exposure_ms;      // the exposure the model's units refer to
+  // Frame-to-frame tracking only: the last tracked frame, the next frame's reference
+  // (empty when the scan tracks against the model, whose ray cast is the reference).
+  ColorImage reference_color;
+  DepthImage reference_depth;
 };
 
 // The per-frame system. Owns the backend (the frame's images, the model and the tracking
@@ -86,6 +104,13 @@ class Pipeline {
   FrameViews DownloadViews();
   // the whole model (every allocated brick).
   const volume::Volume& DownloadVolume();
+  // Where the scan stands now (copies; the model is DownloadVolume()).
+  ResumePoint resume_point() const;
+  // Goes on from a saved model and resume point: the next Process() continues the scan in
+  // the same coordinates as if it had never stopped. Throws hdrf::Error where the model's
+  // voxel size, truncation or encoding differ from the options, or where a frame-to-frame
+  // scan's point has no reference frame. Call on a fresh Pipeline.
+  void Resume(const volume::Volume& model, const ResumePoint& point);
   // The stages themselves, for the backend parity tests.
   Backend& backend() { return *backend_; }
 
@@ -102,6 +127,9 @@ class Pipeline {
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
   int index_ = 0;
   std::optional<double> first_exposure_ms_;
+  bool full_reported_ = false;
+  ColorImage reference_color_;  // frame to frame: the last tracked frame (resume points)
+  DepthImage reference_depth_;
 };
 
 }  // namespace hdrf::pipeline

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "common/error.h"
 
 namespace hdrf::pipeline {
 
@@ -18,6 +21,25 @@ const FrameReport& ScanSession::Process(const FrameInput& frame) {
   lost_ += r.tracking.lost;
   keyframes_.Offer(r, frame.color);
   return r;
+}
+
+void ScanSession::Resume(const volume::Volume& model, const ResumePoint& point, std::vector<FrameReport> reports,
+                         std::vector<Keyframe> keyframes, int keyframes_thinned) {
+  if (!reports_.empty()) throw Error("a scan can only be resumed on a fresh session");
+  if (int(reports.size()) != point.frames)
+    throw Error("the saved scan has " + std::to_string(reports.size()) + " frame reports for " +
+                std::to_string(point.frames) + " frames");
+  for (std::size_t i = 0; i < reports.size(); ++i)
+    if (reports[i].index != int(i)) throw Error("the saved frame reports are out of order at " + std::to_string(i));
+  pipeline_.Resume(model, point);
+  keyframes_.Restore(std::move(keyframes), keyframes_thinned);
+  reports_ = std::move(reports);
+  total_ms_ = {};
+  lost_ = 0;
+  for (const FrameReport& r : reports_) {
+    total_ms_ += r.ms;
+    lost_ += r.tracking.lost;
+  }
 }
 
 std::vector<Pose> ScanSession::poses() const {

@@ -19,6 +19,12 @@ class ScanSession {
 
   // Runs one frame and records its report.
   const FrameReport& Process(const FrameInput& frame);
+  // Takes up a saved scan (a project reopened) on a fresh session: its model, where it
+  // stopped, its per-frame reports and its keyframes; the next Process() goes on as if the
+  // scan had never stopped. Throws hdrf::Error where they do not fit together.
+  void Resume(const volume::Volume& model, const ResumePoint& point, std::vector<FrameReport> reports,
+              std::vector<Keyframe> keyframes, int keyframes_thinned);
+  int keyframes_thinned() const { return keyframes_.thinned(); }
 
   Pipeline& pipeline() { return pipeline_; }
   const Pipeline& pipeline() const { return pipeline_; }

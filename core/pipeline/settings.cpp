@@ -145,14 +145,10 @@ std::vector<Setting> MakeSettings() {
                   "Pixel confidence p0..p3 used for tracking and fusion (p1: square root)",
                   HDRF_FIELD(pcf)));
   // Volume.
-  v.push_back(
-      Alias(Int("volume.resolution", 8, 4096, "voxels",
-                "Voxels per side of the cube (a multiple of 8)", HDRF_FIELD(volume.resolution)),
-            "--volume-res"));
-  v.push_back(
-      Alias(Real("volume.size_m", 1e-3, 1e4, "m", "Side of the cube, centred on the first camera",
-                 HDRF_FIELD(volume.size_m)),
-            "--volume-size"));
+  v.push_back(Alias(Real("volume.voxel_m", 1e-3, 1, "m",
+                         "Voxel side; the volume has no fixed extent, its memory follows the surface seen",
+                         HDRF_FIELD(volume.voxel_m)),
+                    "--voxel-size"));
   v.push_back(Alias(Choice(
                         "volume.voxel", {"compact", "no-nr", "full"},
                         "Voxel storage: compact (12 B), no-nr (24 B) or full (28 B)",
@@ -318,9 +314,17 @@ const std::vector<Setting>& Settings() {
   return settings;
 }
 
+std::string RetiredSetting(const std::string& key) {
+  const std::string k = key.rfind("--", 0) == 0 ? key.substr(2) : key;
+  if (k == "volume.resolution" || k == "volume.size_m" || k == "volume-res" || k == "volume-size")
+    return "was removed: the volume has no fixed extent now; set its voxel size with volume.voxel_m (metres)";
+  return "";
+}
+
 const Setting& FindSetting(const std::string& key) {
   for (const Setting& s : Settings())
     if (s.key == key) return s;
+  if (const std::string why = RetiredSetting(key); !why.empty()) throw SettingError(key, why);
   throw SettingError(key, "unknown setting (hdrfusion scan --help lists them)");
 }
 

@@ -24,8 +24,8 @@ enum class SettingKind {
 };
 
 struct Setting {
-  std::string key;    // "volume.resolution": section and field, the name used everywhere
-  std::string alias;  // a short CLI spelling kept for scripts ("--volume-res"), or ""
+  std::string key;    // "volume.voxel_m": section and field, the name used everywhere
+  std::string alias;  // a short CLI spelling kept for scripts ("--voxel"), or ""
   SettingKind kind = SettingKind::kReal;
   double min = 0, max = 0;           // kInt, kReal, kIntList: inclusive range
   int max_items = 1;                 // kIntList
@@ -47,6 +47,8 @@ struct Setting {
 // Every setting, in the order the help and the forms list them.
 const std::vector<Setting>& Settings();
 // The setting with this key; throws SettingError ("unknown setting") for any other.
+// Why a setting of an earlier version is gone and what replaces it ("" for any other key).
+std::string RetiredSetting(const std::string& key);
 const Setting& FindSetting(const std::string& key);
 
 }  // namespace hdrf::pipeline

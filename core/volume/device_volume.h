@@ -1,9 +1,10 @@
-// The model on the GPU: the same sparse bricks as Volume (volume.h), resident in device
-// memory, with their allocation, integration and ray casting as CUDA kernels over the
+// The model on the GPU: the same sparse, hashed bricks as Volume (volume.h), resident in
+// device memory, with their allocation, integration and ray casting as CUDA kernels over the
 // per-voxel functions of volume_impl.h (volume_cuda.cu). Built only with CUDA.
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "common/device_buffer.h"
 #include "common/se3.h"
@@ -22,47 +23,57 @@ class DeviceVolume {
   DeviceVolume(const DeviceVolume&) = delete;
   DeviceVolume& operator=(const DeviceVolume&) = delete;
 
-  // Fuses one frame (the argument block's image views are device views): marks the bricks
-  // in the truncation band of every second depth pixel, allocates new ones in brick-index
-  // order (as Volume::Integrate does) up to the memory limit, then updates each voxel of the
-  // visible bricks.
+  // Fuses one frame (the argument block's image views are device views): collects the
+  // bricks in the truncation band of every second depth pixel (a per-frame hash set), gives
+  // the new ones slots in key order (as Volume::Integrate does) up to the memory limit, then
+  // updates each voxel of the visible bricks.
   void Integrate(const IntegrateArgs& a, const Pose& T_world_camera);
   // Ray casts into device images (the shared driver, raycast_driver.h).
   void Raycast(const RaycastArgs& a, const RenderingViews& out) const;
 
   const VolumeOptions& options() const { return mirror_.options(); }
-  Float3 origin() const { return mirror_.origin(); }
   std::size_t allocated_bricks() const { return std::size_t(allocated_); }
-  std::size_t last_visible_bricks() const;  // bricks the last Integrate updated
+  std::size_t last_visible_bricks() const { return std::size_t(last_visible_); }
   std::size_t bytes() const;
-  bool full() const { return full_; }
+  bool full() const { return !full_reason_.empty(); }
+  const std::string& full_reason() const { return full_reason_; }
   // Device views of the arrays for the per-element functions (V: the options' encoding).
   template <typename V>
   VolumeView<V> view() const {
-    VolumeView<V> v = mirror_.view<V>();  // geometry from the host twin
-    v.index = const_cast<int*>(index_.data());
-    v.coarse = const_cast<std::uint8_t*>(coarse_.data());
+    VolumeView<V> v;
+    v.bricks = {keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)};
+    v.groups = {group_keys_.data(), group_values_.data(), std::uint32_t(group_keys_.size() - 1)};
     v.pool = reinterpret_cast<V*>(const_cast<std::uint8_t*>(pool_.data()));
+    v.voxel_m = options().voxel_m;
+    v.trunc_m = options().truncation_m();
     return v;
   }
   const BrickCoord* brick_coords() const { return coords_.data(); }
   // A host copy of the whole model (every allocated brick), refreshed after new frames.
   const Volume& Download();
+  // Replaces the model with a host one (a project reopened).
+  void Upload(const Volume& v);
 
  private:
-  void Grow(int bricks);
+  // Room for `bricks` in the pool (false, with the reason set, where the GPU has too little
+  // memory free) and hash tables at most half full for them.
+  bool Reserve(int bricks);
+  void RebuildTables(std::size_t capacity);
 
-  Volume mirror_;  // geometry and limits; the host copy on request
+  Volume mirror_;  // options and limits; the host copy on request
   bool mirror_fresh_ = true;
   int vbytes_ = 0;
-  DeviceBuffer<int> index_, flags_, scan_, todo_;
-  DeviceBuffer<std::uint8_t> coarse_, visible_;
+  DeviceBuffer<std::uint64_t> keys_, group_keys_;  // the hash tables (HashView's layout)
+  DeviceBuffer<int> values_, group_values_;
+  DeviceBuffer<std::uint64_t> frame_set_;           // per-frame set of visible brick keys
+  DeviceBuffer<std::uint64_t> visible_, fresh_, fresh_sorted_;
+  DeviceBuffer<int> todo_;
+  DeviceBuffer<int> counts_;  // visible, new, todo
+  DeviceBuffer<std::uint8_t> temp_;
   DeviceBuffer<std::uint8_t> pool_;  // 512 encoded voxels per brick
   DeviceBuffer<BrickCoord> coords_;
-  DeviceBuffer<int> counts_;  // (new bricks, todo bricks)
-  DeviceBuffer<std::uint8_t> temp_;
-  int allocated_ = 0, capacity_ = 0;
-  bool full_ = false;
+  int allocated_ = 0, capacity_ = 0, last_visible_ = 0;
+  std::string full_reason_;
 };
 
 }  // namespace hdrf::volume

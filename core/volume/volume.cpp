@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "common/error.h"
 #include "volume/raycast_driver.h"
@@ -24,15 +25,13 @@ const char* VoxelEncodingName(VoxelEncoding e) {
 }
 
 void VolumeOptions::Check() const {
-  if (resolution < 8 || resolution % 8 != 0)
-    throw SettingError("volume.resolution", "must be a positive multiple of 8, got " + std::to_string(resolution));
-  if (resolution > 4096)
-    throw SettingError("volume.resolution", std::to_string(resolution) + " is more than 4096 voxels per side");
-  if (!(size_m > 0) || !std::isfinite(size_m))
-    throw SettingError("volume.size_m", "must be a positive number of metres");
-  if (!(truncation_voxels >= 1)) throw SettingError("volume.truncation_voxels", "must be >= 1");
-  if (!(max_weight > 0)) throw SettingError("volume.max_weight", "must be > 0");
-  if (!(max_radiance_weight > 0)) throw SettingError("volume.max_radiance_weight", "must be > 0");
+  if (!(voxel_m >= 1e-3f && voxel_m <= 1.f))
+    throw SettingError("volume.voxel_m", "must be between 0.001 and 1 metre, got " + std::to_string(voxel_m));
+  if (!(truncation_voxels >= 1 && truncation_voxels <= 64))
+    throw SettingError("volume.truncation_voxels", "must be between 1 and 64 voxels");
+  if (!(max_weight > 0) || !std::isfinite(max_weight)) throw SettingError("volume.max_weight", "must be > 0");
+  if (!(max_radiance_weight > 0) || !std::isfinite(max_radiance_weight))
+    throw SettingError("volume.max_radiance_weight", "must be > 0");
   if (encoding == VoxelEncoding::kCompact && (max_weight > 65 || max_radiance_weight > 65))
     throw SettingError(max_weight > 65 ? "volume.max_weight" : "volume.max_radiance_weight",
                        "compact voxels hold weights up to 65; lower the cap or use volume.voxel full");
@@ -40,43 +39,90 @@ void VolumeOptions::Check() const {
   if (!(tau0 >= 0 && tau0 < 1)) throw SettingError("volume.tau0", "must be in [0, 1)");
   if (!(raycast_near_m > 0) || !(raycast_far_m > raycast_near_m) || !std::isfinite(raycast_far_m))
     throw SettingError("volume.raycast_far_m", "ray casting needs 0 < near < far (finite metres)");
-  const double nb = resolution / 8.0;
-  const double index_mb = nb * nb * nb * 4.0 / (1024.0 * 1024.0);
-  const double brick_mb = 512.0 * EncodingBytes(encoding) / (1024.0 * 1024.0);
-  if (index_mb + 64 * brick_mb > max_memory_mb)
-    throw SettingError("volume.resolution", "a " + std::to_string(resolution) + "^3 volume needs " +
-                                           std::to_string(int(index_mb)) + " MiB for its brick index alone, more than the " +
-                                           std::to_string(int(max_memory_mb)) + " MiB allowed (volume.max_memory_mb)");
+  if (!(max_memory_mb >= 1 && max_memory_mb <= double(1 << 24)))
+    throw SettingError("volume.max_memory_mb", "must be between 1 MiB and 16 TiB");
+}
+
+std::size_t VolumeOptions::max_bricks() const {
+  // A brick also costs its entries in the two hash tables (at most half full: 4 slots of 12 bytes).
+  const double per_brick = double(brick_bytes()) + 48.0;
+  return std::size_t(std::min(max_memory_mb * 1024 * 1024 / per_brick, double(1 << 30)));
+}
+
+void BrickTable::Reset(std::size_t capacity) {
+  keys_.assign(capacity, kEmptyKey);
+  values_.assign(capacity, -1);
+  size_ = 0;
+}
+
+void BrickTable::Insert(std::uint64_t key, int value) {
+  if (2 * (size_ + 1) > keys_.size()) {  // grow: reinsert everything at twice the capacity
+    std::vector<std::uint64_t> keys = std::move(keys_);
+    std::vector<int> values = std::move(values_);
+    Reset(keys.size() * 2);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmptyKey) Insert(keys[i], values[i]);
+  }
+  const std::uint32_t mask = std::uint32_t(keys_.size() - 1);
+  std::uint32_t h = HashBrickKey(key) & mask;
+  while (keys_[h] != kEmptyKey) h = (h + 1) & mask;
+  keys_[h] = key;
+  values_[h] = value;
+  ++size_;
+}
+
+std::optional<std::size_t> AvailableHostBytes() {
+  std::FILE* f = std::fopen("/proc/meminfo", "r");
+  if (!f) return std::nullopt;
+  char line[256];
+  std::optional<std::size_t> kb;
+  while (std::fgets(line, sizeof line, f)) {
+    unsigned long long v = 0;
+    if (std::sscanf(line, "MemAvailable: %llu kB", &v) == 1) {
+      kb = std::size_t(v);
+      break;
+    }
+  }
+  std::fclose(f);
+  if (!kb) return std::nullopt;
+  return *kb * 1024;
 }
 
 Volume::Volume(const VolumeOptions& o) : o_(o) {
   o_.Check();
-  n_ = o_.resolution;
-  nb_ = n_ / kBrick;
-  const float half = 0.5f * o_.size_m;
-  origin_ = {-half, -half, -half};
-  index_.assign(std::size_t(nb_) * nb_ * nb_, -1);
-  nc_ = (nb_ + 3) / 4;
-  coarse_.assign(std::size_t(nc_) * nc_ * nc_, 0);
-  const double brick_bytes = 512.0 * EncodingBytes(o_.encoding);
-  max_bricks_ = std::size_t(std::max(0.0, (o_.max_memory_mb * 1024 * 1024 - double(index_.size()) * 4) / brick_bytes));
+  max_bricks_ = o_.max_bricks();
 }
 
-std::size_t Volume::bytes() const {
-  return index_.size() * sizeof(int) + pool_.size();
-}
+std::size_t Volume::bytes() const { return table_.bytes() + groups_.bytes() + pool_.size(); }
 
-bool Volume::Allocate(int bx, int by, int bz) {
-  int& slot = index_[BrickIndex(bx, by, bz)];
-  if (slot >= 0) return true;
+bool Volume::Allocate(std::uint64_t key) {
+  if (!full_reason_.empty()) return false;
   if (brick_coord_.size() >= max_bricks_) {
-    full_ = true;
+    full_reason_ = "the model reached its memory budget of " + std::to_string(long(o_.max_memory_mb)) +
+                   " MiB (volume.max_memory_mb): " + std::to_string(brick_coord_.size()) + " bricks";
     return false;
   }
-  slot = int(brick_coord_.size());
+  const std::size_t bytes = o_.brick_bytes();
+  if (pool_.size() + bytes > pool_.capacity()) {
+    // Grow by half (at least 256 bricks), within the budget and what the system has free.
+    const std::size_t bricks = brick_coord_.size();
+    const std::size_t want = std::min(max_bricks_, std::max(bricks + 256, bricks + bricks / 2));
+    const std::size_t extra = (want - bricks) * bytes;
+    const auto avail = AvailableHostBytes();
+    if (avail && *avail < extra + (std::size_t(256) << 20)) {
+      full_reason_ = "the system has " + std::to_string(*avail >> 20) + " MiB of memory available, too little to grow the model past " +
+                     std::to_string(bricks) + " bricks";
+      return false;
+    }
+    pool_.reserve(want * bytes);
+  }
+  int bx, by, bz;
+  DecodeBrickKey(key, &bx, &by, &bz);
+  const int slot = int(brick_coord_.size());
+  table_.Insert(key, slot);
+  const std::uint64_t g = GroupKey(bx, by, bz);
+  if (groups_.Find(g) < 0) groups_.Insert(g, 1);
   brick_coord_.push_back({bx, by, bz});
-  coarse_[std::size_t(((bz >> 2) * nc_ + (by >> 2)) * nc_ + (bx >> 2))] = 1;
-  const std::size_t bytes = 512 * std::size_t(voxel_bytes());
   pool_.resize(pool_.size() + bytes);
   VisitEncoding(o_.encoding, [&](auto tag) {
     using V = decltype(tag);
@@ -106,27 +152,42 @@ bool Volume::Gradient(Float3 p, Float3* n) const {
   return VisitEncoding(o_.encoding, [&](auto tag) { return view<decltype(tag)>().Gradient(p, n); });
 }
 
-void Volume::Assign(std::vector<int> index, std::vector<std::uint8_t> pool,
-                    std::vector<std::array<int, 3>> coords, bool full) {
-  if (index.size() != index_.size() || pool.size() != coords.size() * 512 * std::size_t(voxel_bytes()))
-    throw Error("volume copy: inconsistent sizes");
-  index_ = std::move(index);
+void Volume::Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 3>> coords, std::string full_reason) {
+  if (pool.size() != coords.size() * o_.brick_bytes()) throw Error("volume copy: inconsistent sizes");
+  std::size_t cap = 1024;
+  while (cap < 2 * coords.size() + 2) cap *= 2;
+  table_.Reset(cap);
+  groups_.Reset(cap);
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const auto& c = coords[i];
+    if (!BrickInRange(c[0], c[1], c[2])) throw Error("volume copy: brick coordinates out of range");
+    const std::uint64_t key = BrickKey(c[0], c[1], c[2]);
+    if (table_.Find(key) >= 0) throw Error("volume copy: a brick is named twice");
+    table_.Insert(key, int(i));
+    const std::uint64_t g = GroupKey(c[0], c[1], c[2]);
+    if (groups_.Find(g) < 0) groups_.Insert(g, 1);
+  }
   pool_ = std::move(pool);
   brick_coord_ = std::move(coords);
-  full_ = full;
-  std::fill(coarse_.begin(), coarse_.end(), 0);
-  for (const auto& c : brick_coord_)
-    coarse_[std::size_t(((c[2] >> 2) * nc_ + (c[1] >> 2)) * nc_ + (c[0] >> 2))] = 1;
+  full_reason_ = std::move(full_reason);
 }
 
-IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, Float3 origin, const PinholeCamera& cam,
-                                        const Pose& T_world_camera, float radiance_scale) {
+std::array<Float3, 2> Volume::Bounds() const {
+  if (brick_coord_.empty()) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
+  std::array<int, 3> lo = brick_coord_[0], hi = brick_coord_[0];
+  for (const auto& c : brick_coord_)
+    for (int k = 0; k < 3; ++k) lo[std::size_t(k)] = std::min(lo[std::size_t(k)], c[std::size_t(k)]), hi[std::size_t(k)] = std::max(hi[std::size_t(k)], c[std::size_t(k)]);
+  const float bs = o_.voxel_m * kBrick;
+  return {Float3{lo[0] * bs, lo[1] * bs, lo[2] * bs}, Float3{(hi[0] + 1) * bs, (hi[1] + 1) * bs, (hi[2] + 1) * bs}};
+}
+
+IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, const PinholeCamera& cam, const Pose& T_world_camera,
+                                        float radiance_scale) {
   IntegrateArgs a{};
   a.radiance_scale = radiance_scale;
   a.cam = cam;
   a.T_camera_world = ToRigidTransform(T_world_camera.inverse());
-  a.origin = origin;
-  a.voxel_m = o.voxel_m();
+  a.voxel_m = o.voxel_m;
   a.trunc_m = o.truncation_m();
   a.max_weight = o.max_weight;
   a.max_radiance_weight = o.max_radiance_weight;
@@ -137,7 +198,7 @@ IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, Float3 origin, c
 
 Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   IntegrateStats st;
-  IntegrateArgs args = MakeIntegrateArgs(o_, origin_, in.camera, in.T_world_camera, in.radiance_scale);
+  IntegrateArgs args = MakeIntegrateArgs(o_, in.camera, in.T_world_camera, in.radiance_scale);
   args.depth = View(*in.depth_m);
   args.normals = View(*in.normals);
   if (in.radiance) {
@@ -148,23 +209,30 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   }
   const RigidTransform T = ToRigidTransform(in.T_world_camera);
   const DepthImage& depth = *in.depth_m;
-  // 1. Bricks within the truncation band of every depth sample (every 2nd pixel).
-  std::vector<std::uint8_t> visible(index_.size(), 0);
+  // 1. Bricks within the truncation band of every depth sample (every 2nd pixel), in key
+  // order; new ones take the next slots in that order (as on the GPU).
+  std::vector<std::uint64_t> keys;
+  std::uint64_t last = kEmptyKey;
   for (int y = 0; y < depth.height(); y += 2)
     for (int x = 0; x < depth.width(); x += 2)
-      ForBricksAlongRay(args, T, nb_, x, y,
-                        [&](int bx, int by, int bz) { visible[std::size_t(BrickIndex(bx, by, bz))] = 1; });
+      ForBricksAlongRay(args, T, x, y, [&](int bx, int by, int bz) {
+        const std::uint64_t k = BrickKey(bx, by, bz);
+        if (k != last) keys.push_back(k);
+        last = k;
+      });
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<int> todo;
-  for (int bz = 0; bz < nb_; ++bz)
-    for (int by = 0; by < nb_; ++by)
-      for (int bx = 0; bx < nb_; ++bx) {
-        const int i = BrickIndex(bx, by, bz);
-        if (!visible[std::size_t(i)]) continue;
-        const bool existed = index_[std::size_t(i)] >= 0;
-        if (!Allocate(bx, by, bz)) continue;
-        st.new_bricks += !existed;
-        todo.push_back(index_[std::size_t(i)]);
-      }
+  todo.reserve(keys.size());
+  for (const std::uint64_t k : keys) {
+    int slot = table_.Find(k);
+    if (slot < 0) {
+      if (!Allocate(k)) continue;
+      slot = int(brick_coord_.size()) - 1;
+      ++st.new_bricks;
+    }
+    todo.push_back(slot);
+  }
   st.visible_bricks = todo.size();
   // 2. Update the voxels of those bricks.
   std::size_t updated = 0, rad_updates = 0;

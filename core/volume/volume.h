@@ -1,11 +1,12 @@
-// The model: a truncated signed distance function with HDR radiance, in voxels of fixed
-// size over a cube centred on the first camera. Storage is sparse: 8^3-voxel bricks,
-// allocated where depth was seen, behind a dense brick index (the cube is bounded), so
-// memory follows the observed surface, not the cube.
+// The model: a truncated signed distance function with HDR radiance in voxels of a fixed
+// size, with no fixed extent. Storage is sparse: 8^3-voxel bricks, allocated where depth was
+// seen and found through a spatial hash of their coordinates (volume_impl.h), so memory
+// follows the observed surface wherever the camera goes.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,7 @@ VoxelEncoding ParseVoxelEncoding(const std::string& s);
 const char* VoxelEncodingName(VoxelEncoding e);
 
 struct VolumeOptions {
-  int resolution = 256;          // voxels per side (a multiple of 8)
-  float size_m = 6.0f;           // side of the cube, metres, centred on the first camera
+  float voxel_m = 0.02f;         // voxel side, metres (docs/engine.md: the choice measured)
   float truncation_voxels = 4;   // TSDF truncation distance, in voxels
   float max_weight = 64;         // cap of the TSDF weight (running mean window)
   float max_radiance_weight = 64;  // cap of the radiance weight
@@ -35,22 +35,48 @@ struct VolumeOptions {
   // engine's tests at 12 instead of 28 bytes (docs/benchmarks.md).
   VoxelEncoding encoding = VoxelEncoding::kCompact;
   void Check() const;            // throws SettingError naming the setting (volume.*)
-  float voxel_m() const { return size_m / float(resolution); }
-  float truncation_m() const { return truncation_voxels * voxel_m(); }
+  float truncation_m() const { return truncation_voxels * voxel_m; }
+  // Bytes of one brick's voxels, and the most bricks max_memory_mb holds.
+  std::size_t brick_bytes() const { return 512 * std::size_t(EncodingBytes(encoding)); }
+  std::size_t max_bricks() const;
 };
+
+// An open-addressing hash table in host memory (the layout HashView reads): brick or group
+// key -> pool slot; kept at most half full, doubling as it fills.
+class BrickTable {
+ public:
+  BrickTable() { Reset(1024); }
+  int Find(std::uint64_t key) const { return view().Find(key); }
+  // Inserts a key not yet present.
+  void Insert(std::uint64_t key, int value);
+  void Reset(std::size_t capacity);  // empty, with room for `capacity` entries (a power of two)
+  HashView view() const { return {keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}; }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return keys_.size(); }
+  std::size_t bytes() const { return keys_.size() * (sizeof(std::uint64_t) + sizeof(int)); }
+
+ private:
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> values_;
+  std::size_t size_ = 0;
+};
+
+// Bytes of host memory the system could give now (MemAvailable), or nullopt where unknown.
+std::optional<std::size_t> AvailableHostBytes();
 
 class Volume {
  public:
   explicit Volume(const VolumeOptions& o);
 
   const VolumeOptions& options() const { return o_; }
-  Float3 origin() const { return origin_; }  // world position of voxel (0,0,0)'s corner
-  int bricks_per_side() const { return nb_; }
   std::size_t allocated_bricks() const { return brick_coord_.size(); }
   std::size_t bytes() const;
-  bool full() const { return full_; }  // allocation stopped at max_memory_mb
+  // Allocation stopped: at max_memory_mb, or where the system had no more memory; why, in
+  // a sentence naming the limit ("" while not full).
+  bool full() const { return !full_reason_.empty(); }
+  const std::string& full_reason() const { return full_reason_; }
 
-  // Decoded voxel at integer coordinates; false where unallocated / outside.
+  // Decoded voxel at integer coordinates; false where unallocated.
   bool Get(int x, int y, int z, Voxel* out) const;
   bool BrickAllocated(int bx, int by, int bz) const;
   // Trilinear TSDF at a world point (voxel-centre grid); false where the observed corners
@@ -60,20 +86,15 @@ class Volume {
   bool SampleRadiance(Float3 p, Float3* radiance, float* nr) const;
   // Normal from the TSDF gradient; false where undefined.
   bool Gradient(Float3 p, Float3* n) const;
-  // The arrays and geometry for the per-element functions of volume_impl.h; V must be the
-  // options' encoding.
+  // The arrays for the per-element functions of volume_impl.h; V must be the options'
+  // encoding.
   template <typename V>
   VolumeView<V> view() const {
     VolumeView<V> v;
-    v.index = index_.data();
-    v.coarse = coarse_.data();
+    v.bricks = table_.view();
+    v.groups = groups_.view();
     v.pool = reinterpret_cast<V*>(const_cast<std::uint8_t*>(pool_.data()));
-    v.n = n_;
-    v.nb = nb_;
-    v.nc = nc_;
-    v.origin = origin_;
-    v.voxel_m = o_.voxel_m();
-    v.size_m = o_.size_m;
+    v.voxel_m = o_.voxel_m;
     v.trunc_m = o_.truncation_m();
     return v;
   }
@@ -106,36 +127,34 @@ class Volume {
   };
   Rendering Raycast(const PinholeCamera& cam, const Pose& T_world_camera) const;
 
-  // Voxel coordinates of allocated bricks (for meshing).
+  // Brick coordinates of each pool slot, in allocation order (for meshing).
   const std::vector<std::array<int, 3>>& bricks() const { return brick_coord_; }
+  // The world box (min and max corners, metres) of the allocated bricks; zeros when empty.
+  std::array<Float3, 2> Bounds() const;
 
-  // The raw state, for a copy made elsewhere (the CUDA volume's host mirror): the brick
-  // index (nb^3), the voxel pool (512 per brick, in slot order), each slot's brick
-  // coordinates, and whether allocation had stopped at the memory limit.
-  const std::vector<int>& brick_index() const { return index_; }
-  const std::vector<std::uint8_t>& pool() const { return pool_; }  // encoded voxels
-  void Assign(std::vector<int> index, std::vector<std::uint8_t> pool,
-              std::vector<std::array<int, 3>> brick_coords, bool full);
+  // The raw state, for a copy made elsewhere (the CUDA volume's host mirror, project files):
+  // the voxel pool (512 encoded voxels per brick, in slot order), each slot's brick
+  // coordinates, and why allocation had stopped ("" if it had not). The hash tables are
+  // rebuilt from the coordinates.
+  const std::vector<std::uint8_t>& pool() const { return pool_; }
+  void Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 3>> brick_coords, std::string full_reason);
   // Integration and ray casting argument blocks shared with the CUDA backend.
   // (the caller sets the image views).
-  static IntegrateArgs MakeIntegrateArgs(const VolumeOptions& o, Float3 origin, const PinholeCamera& cam,
-                                         const Pose& T_world_camera, float radiance_scale);
+  static IntegrateArgs MakeIntegrateArgs(const VolumeOptions& o, const PinholeCamera& cam, const Pose& T_world_camera,
+                                         float radiance_scale);
   std::size_t max_bricks() const { return max_bricks_; }
 
  private:
-  int BrickIndex(int bx, int by, int bz) const { return (bz * nb_ + by) * nb_ + bx; }
-  bool Allocate(int bx, int by, int bz);
+  // Allocates the brick with this key in the next slot; false when a limit stops it.
+  bool Allocate(std::uint64_t key);
 
   VolumeOptions o_;
-  int n_ = 0, nb_ = 0;
-  Float3 origin_{};
-  std::vector<int> index_;
-  std::vector<std::uint8_t> coarse_;  // per 4x4x4 bricks: any allocated (ray skipping)
-  int nc_ = 0;
+  BrickTable table_;   // brick key -> slot
+  BrickTable groups_;  // group key -> 1 (empty-space skipping)
   std::vector<std::uint8_t> pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
   std::size_t max_bricks_ = 0;
-  bool full_ = false;
+  std::string full_reason_;
 };
 
 }  // namespace hdrf::volume

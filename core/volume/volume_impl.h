@@ -157,27 +157,77 @@ decltype(auto) VisitEncoding(VoxelEncoding e, F&& f) {
 
 inline constexpr int kBrick = 8;
 
-// The volume's arrays and geometry, wherever they live, for voxel encoding V.
+// ---- Brick addressing -------------------------------------------------------------------------
+// The volume has no fixed extent: a brick (8^3 voxels) is named by its integer coordinates,
+// each within [-kBrickRange, kBrickRange) (at 1 cm voxels, 2.6 km either way of the first
+// camera), packed into a 64-bit key whose order is z, then y, then x. Bricks are found
+// through an open-addressing hash table (linear probing, a power-of-two capacity kept at
+// most half full), the same table layout on the CPU and the GPU.
+inline constexpr int kBrickRange = 1 << 15;
+inline constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+
+HDRF_HD bool BrickInRange(int bx, int by, int bz) {
+  return unsigned(bx + kBrickRange) < unsigned(2 * kBrickRange) && unsigned(by + kBrickRange) < unsigned(2 * kBrickRange) &&
+         unsigned(bz + kBrickRange) < unsigned(2 * kBrickRange);
+}
+HDRF_HD std::uint64_t BrickKey(int bx, int by, int bz) {
+  return (std::uint64_t(unsigned(bz + kBrickRange)) << 32) | (std::uint64_t(unsigned(by + kBrickRange)) << 16) |
+         std::uint64_t(unsigned(bx + kBrickRange));
+}
+HDRF_HD void DecodeBrickKey(std::uint64_t key, int* bx, int* by, int* bz) {
+  *bx = int(key & 0xffffu) - kBrickRange;
+  *by = int((key >> 16) & 0xffffu) - kBrickRange;
+  *bz = int((key >> 32) & 0xffffu) - kBrickRange;
+}
+// The 4x4x4-brick group holding a brick (empty-space skipping).
+HDRF_HD std::uint64_t GroupKey(int bx, int by, int bz) { return BrickKey(bx >> 2, by >> 2, bz >> 2); }
+HDRF_HD std::uint32_t HashBrickKey(std::uint64_t k) {
+  k ^= k >> 33;
+  k *= 0xff51afd7ed558ccdull;
+  k ^= k >> 33;
+  k *= 0xc4ceb9fe1a85ec53ull;
+  k ^= k >> 33;
+  return std::uint32_t(k);
+}
+
+// A hash table's arrays, wherever they live: key -> value (a pool slot), -1 where absent.
+struct HashView {
+  const std::uint64_t* keys = nullptr;
+  const int* values = nullptr;
+  std::uint32_t mask = 0;  // capacity - 1
+  HDRF_HD int Find(std::uint64_t key) const {
+    std::uint32_t h = HashBrickKey(key) & mask;
+    for (std::uint32_t probes = 0; probes <= mask; ++probes) {
+      const std::uint64_t k = keys[h];
+      if (k == key) return values[h];
+      if (k == kEmptyKey) return -1;
+      h = (h + 1) & mask;
+    }
+    return -1;
+  }
+};
+
+// The volume's arrays, wherever they live, for voxel encoding V.
 template <typename V>
 struct VolumeView {
-  const int* index = nullptr;            // nb^3 brick slots, -1 = unallocated
-  const std::uint8_t* coarse = nullptr;  // nc^3: any brick allocated in this 4x4x4 group
+  HashView bricks;                       // brick key -> pool slot
+  HashView groups;                       // group key -> any brick allocated in the group
   V* pool = nullptr;                     // 512 voxels per allocated brick
-  int n = 0, nb = 0, nc = 0;             // voxels, bricks and coarse cells per side
-  Float3 origin{0, 0, 0};                // world position of voxel (0,0,0)'s corner
-  float voxel_m = 0, size_m = 0, trunc_m = 0;
+  float voxel_m = 0, trunc_m = 0;
 
-  HDRF_HD int BrickIndex(int bx, int by, int bz) const { return (bz * nb + by) * nb + bx; }
-  HDRF_HD bool BrickAllocated(int bx, int by, int bz) const {
-    return bx >= 0 && by >= 0 && bz >= 0 && bx < nb && by < nb && bz < nb && index[BrickIndex(bx, by, bz)] >= 0;
+  HDRF_HD int Slot(int bx, int by, int bz) const {
+    return BrickInRange(bx, by, bz) ? bricks.Find(BrickKey(bx, by, bz)) : -1;
+  }
+  HDRF_HD bool BrickAllocated(int bx, int by, int bz) const { return Slot(bx, by, bz) >= 0; }
+  HDRF_HD bool GroupAllocated(int bx, int by, int bz) const {
+    return BrickInRange(bx, by, bz) && groups.Find(GroupKey(bx, by, bz)) >= 0;
   }
   HDRF_HD const V* Get(int x, int y, int z) const {
-    if (x < 0 || y < 0 || z < 0 || x >= n || y >= n || z >= n) return nullptr;
-    const int b = index[BrickIndex(x >> 3, y >> 3, z >> 3)];
+    const int b = Slot(x >> 3, y >> 3, z >> 3);
     return b < 0 ? nullptr : &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
   }
   // Voxel-centre grid coordinates of a world point.
-  HDRF_HD Float3 Grid(Float3 p) const { return (p - origin) * (1.f / voxel_m) - Float3{0.5f, 0.5f, 0.5f}; }
+  HDRF_HD Float3 Grid(Float3 p) const { return p * (1.f / voxel_m) - Float3{0.5f, 0.5f, 0.5f}; }
 
   // Trilinear TSDF over the observed corners, renormalised; undefined (false) when the
   // observed corners carry less than half of the interpolation weight.
@@ -186,10 +236,9 @@ struct VolumeView {
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
     float acc = 0.f, wsum = 0.f;
-    if ((x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7 && x >= 0 && y >= 0 && z >= 0 && x < n - 1 &&
-        y < n - 1 && z < n - 1) {
+    if ((x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7) {
       // Fast path: all eight corners in one brick.
-      const int b = index[BrickIndex(x >> 3, y >> 3, z >> 3)];
+      const int b = Slot(x >> 3, y >> 3, z >> 3);
       if (b < 0) return false;
       const V* base = &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
       for (int k = 0; k < 8; ++k) {
@@ -262,15 +311,18 @@ struct IntegrateArgs {
   float radiance_scale = 1;                // exposure compensation applied on the fly
   PinholeCamera cam;
   RigidTransform T_camera_world;
-  Float3 origin;
   float voxel_m, trunc_m, max_weight, max_radiance_weight, tau0, cos_tau1;
 };
 
+// The most bricks ForBricksAlongRay names for one ray.
+HDRF_HD int MaxBricksAlongRay(float trunc_m, float voxel_m) { return int(2.f * trunc_m / (0.5f * voxel_m * kBrick)) + 2; }
+
 // Brick coordinates along the depth ray of pixel (x, y) within the truncation band; calls
-// mark(bx, by, bz) for each (a brick may be named more than once).
+// mark(bx, by, bz) for each (a brick may be named more than once; bricks out of range are
+// skipped).
 template <typename Mark>
-HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_world_camera, int nb,
-                               int x, int y, Mark&& mark) {
+HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_world_camera, int x, int y,
+                               Mark&& mark) {
   const float z = a.depth(x, y);
   if (!(z > 0.f)) return;
   const float bs = a.voxel_m * kBrick;
@@ -279,10 +331,10 @@ HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_w
   const Float3 dir = pc / len;
   for (float d = len - a.trunc_m; d <= len + a.trunc_m; d += 0.5f * bs) {
     const Float3 pw = T_world_camera.Apply(dir * d);
-    const Float3 g = (pw - a.origin) / bs;
-    const int bx = int(floorf(g.x)), by = int(floorf(g.y)), bz = int(floorf(g.z));
-    if (bx < 0 || by < 0 || bz < 0 || bx >= nb || by >= nb || bz >= nb) continue;
-    mark(bx, by, bz);
+    const Float3 g = pw / bs;
+    if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
+      continue;
+    mark(int(floorf(g.x)), int(floorf(g.y)), int(floorf(g.z)));
   }
 }
 
@@ -292,7 +344,7 @@ template <typename V>
 HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
   const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
   const float vs = a.voxel_m, trunc = a.trunc_m;
-  const Float3 pw = a.origin + Float3{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs,
+  const Float3 pw = Float3{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs,
                                       (float(bz * 8 + lz) + 0.5f) * vs};
   const Float3 pc = a.T_camera_world.Apply(pw);
   if (pc.z <= 0.05f) return 0;
@@ -345,26 +397,13 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
   const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));
   const Float3 dw = a.T_world_camera.Rotate(dc), o = a.T_world_camera.t;
-  // Clip the ray to the volume's cube.
-  float t0 = a.near_m, t1 = a.far_m;
-  const float ov[3] = {o.x, o.y, o.z}, dv[3] = {dw.x, dw.y, dw.z};
-  const float lo[3] = {V.origin.x, V.origin.y, V.origin.z};
-  for (int k = 0; k < 3; ++k) {
-    if (fabsf(dv[k]) < 1e-9f) continue;
-    float ta = (lo[k] - ov[k]) / dv[k], tb = (lo[k] + V.size_m - ov[k]) / dv[k];
-    if (ta > tb) {
-      const float s = ta;
-      ta = tb;
-      tb = s;
-    }
-    t0 = t0 > ta ? t0 : ta;
-    t1 = t1 < tb ? t1 : tb;
-  }
+  // The volume has no bounds: the ray runs from near to far, skipping empty space.
+  const float t0 = a.near_m, t1 = a.far_m;
   const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
                           fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
   // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
   auto cell_exit = [&](const Float3& p, float cell, float t) {
-    const float gp[3] = {(p.x - V.origin.x) / cell, (p.y - V.origin.y) / cell, (p.z - V.origin.z) / cell};
+    const float gp[3] = {p.x / cell, p.y / cell, p.z / cell};
     float te = t1;
     for (int k = 0; k < 3; ++k) {
       if (inv_d[k] == 1e9f) continue;
@@ -379,10 +418,11 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   bool prev_valid = false;
   while (t < t1) {
     const Float3 p = o + dw * t;
-    const Float3 g = (p - V.origin) / bs;
+    const Float3 g = p / bs;
+    if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
+      break;
     const int bx = int(floorf(g.x)), by = int(floorf(g.y)), bz = int(floorf(g.z));
-    if (bx < 0 || by < 0 || bz < 0 || bx >= V.nb || by >= V.nb || bz >= V.nb) break;
-    if (!V.coarse[((bz >> 2) * V.nc + (by >> 2)) * V.nc + (bx >> 2)]) {
+    if (!V.GroupAllocated(bx, by, bz)) {
       const float te = cell_exit(p, 4 * bs, t) + 0.01f * vs;
       t = t + 0.1f * vs > te ? t + 0.1f * vs : te;
       prev_valid = false;

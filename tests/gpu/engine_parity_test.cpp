@@ -96,7 +96,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
   const auto frames = Frames(3, w, h);
   const SensorInfo s = Sensor(w, h);
   PipelineOptions o;
-  o.volume.resolution = 256;
+  o.volume.voxel_m = 0.0234f;
   o.volume.encoding = GetParam();
   std::printf("voxel encoding %s: %d bytes\n", volume::VoxelEncodingName(o.volume.encoding),
               volume::EncodingBytes(o.volume.encoding));

@@ -138,7 +138,7 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
   so.ae.mode = sim::AeMode::kFlicker;
   sim::SyntheticSource src(so);
   pipeline::PipelineOptions po;
-  po.volume.resolution = 128;
+  po.volume.voxel_m = 0.047f;
   pipeline::ScanSession session(po, sim::SimCamera(160, 120), src.sensor());
   ToneMapper filtered, unfiltered, fixed;
   filtered.Set({"mantiuk08", {{"temporal", 1}}});
@@ -244,7 +244,7 @@ TEST(TonePanel, BothMantiukOperatorsOnTheFusedModel) {
   so.frames = 60;
   sim::SyntheticSource src(so);
   pipeline::PipelineOptions po;
-  po.volume.resolution = 128;
+  po.volume.voxel_m = 0.047f;
   pipeline::ScanSession session(po, sim::SimCamera(so.width, so.height), src.sensor());
   while (!src.done()) {
     const sim::SimFrame f = src.Next();
@@ -384,7 +384,7 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
     if (s.key != "device") EXPECT_EQ(form.Value(s.key), s.Default()) << s.key;
   }
   pipeline::PipelineOptions o;
-  o.volume.resolution = 192;
+  o.volume.voxel_m = 0.03f;
   o.volume.tau0 = 0.35f;
   o.tracker.kind = tracking::TrackerKind::kIcp;
   o.tracker.frame_to_model = false;
@@ -393,7 +393,7 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
   o.depth.sigma_depth_m = 0.05f;
   form.SetOptions(o);
   const pipeline::PipelineOptions back = form.Options();
-  EXPECT_EQ(back.volume.resolution, 192);
+  EXPECT_FLOAT_EQ(back.volume.voxel_m, 0.03f);
   EXPECT_FLOAT_EQ(back.volume.tau0, 0.35f);
   EXPECT_EQ(back.tracker.kind, tracking::TrackerKind::kIcp);
   EXPECT_FALSE(back.tracker.frame_to_model);
@@ -409,7 +409,7 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
   SettingsForm again;
   QSettings saved(dir.filePath("s.ini"), QSettings::IniFormat);
   again.Load(saved);
-  EXPECT_EQ(again.Value("volume.resolution"), "192");
+  EXPECT_EQ(again.Value("volume.voxel_m"), "0.03");
   EXPECT_EQ(again.Value("tracker.kind"), "icp");
   EXPECT_EQ(again.Value("nr.patch"), "15");  // the default stays
   // A value the options refuse together (compact voxels cap weights at 65) is reported.
@@ -425,7 +425,7 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   QSignalSpy finished(wt.w, &ScanWorker::finished);
   ScanSettings s;
   s.source = "synthetic:frames=12,size=160x120,ae=flicker";
-  s.pipeline.volume.resolution = 128;
+  s.pipeline.volume.voxel_m = 0.047f;
   s.mesh_every_frames = 5;
   s.mesh_min_interval_ms = 0;
   wt.Call([&wt, s] { wt.w->Configure(s); });
@@ -474,7 +474,7 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   QSignalSpy failed(wt.w, &ScanWorker::failed);
   ScanSettings s;
   s.source = seq.string();
-  s.pipeline.volume.resolution = 128;
+  s.pipeline.volume.voxel_m = 0.047f;
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
   ASSERT_TRUE(Arrived(failed, 60000));
@@ -510,6 +510,39 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
   ASSERT_TRUE(Arrived(done, 10000));
   EXPECT_TRUE(done.takeFirst().at(0).toBool());
   EXPECT_EQ(io::ReadExr(dir.filePath("r.exr").toStdString()).width(), 160);
+}
+
+// A memory budget too small for the room: the snapshot says the volume is full and why, the
+// scan goes on to the end, and the model it holds is kept and exports.
+TEST(ScanWorker, ABudgetReachedIsReportedAndTheModelIsKept) {
+  WorkerOnThread wt;
+  std::vector<std::shared_ptr<const Snapshot>> got;
+  QObject ctx;
+  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
+  QSignalSpy finished(wt.w, &ScanWorker::finished);
+  ScanSettings s;
+  s.source = "synthetic:frames=20,size=160x120,ae=flicker";
+  s.pipeline.volume.max_memory_mb = 2;
+  s.autosave_s = 0;
+  wt.Call([&wt, s] { wt.w->Configure(s); });
+  wt.Call([&wt] { wt.w->Start(); });
+  ASSERT_TRUE(Arrived(finished, 120000));
+  QCoreApplication::processEvents();
+  ASSERT_EQ(got.size(), 20u);
+  const Snapshot& last = *got.back();
+  EXPECT_NE(last.volume_full.find("memory budget of 2 MiB"), std::string::npos) << last.volume_full;
+  EXPECT_EQ(last.volume_budget_mb, 2.0);
+  EXPECT_LE(double(last.volume_bytes), 2.0 * (1 << 20) * 1.01);
+  int reported = 0;
+  for (const auto& g : got) reported += !g->report.volume_full.empty();
+  EXPECT_EQ(reported, 1);  // said once, on the frame it happened
+  QSignalSpy done(wt.w, &ScanWorker::exportDone);
+  QTemporaryDir dir;
+  const QString ply = dir.filePath("model.ply");
+  wt.Call([&wt, ply] { wt.w->ExportMesh(ply); });
+  ASSERT_TRUE(Arrived(done, 60000));
+  EXPECT_TRUE(done.takeFirst().at(0).toBool());
+  EXPECT_GT(io::ReadPly(ply.toStdString()).triangles.size(), 1000u);
 }
 
 TEST(ScanWorker, AMissingSourceIsReportedNotFatal) {

@@ -16,12 +16,15 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QMessageBox>
+#include <QAbstractButton>
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QWizard>
 #include <QAction>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -29,6 +32,7 @@
 #include "gui/image_view.h"
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
+#include "io/project.h"
 #include "support/test_support.h"
 
 #ifndef HDRF_STUDIO_BINARY
@@ -46,6 +50,9 @@ void FreshSettings() {
   QSettings s;
   s.clear();
   s.sync();
+  // ... and no autosave of an earlier test's window on offer.
+  std::error_code ec;
+  std::filesystem::remove_all(io::RecoveryFolder(), ec);
 }
 
 TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
@@ -216,6 +223,89 @@ TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
             QStringList{"keep.txt"});
 }
 
+// File > Save project, reopened in a new window (model, trajectory and views back, Start
+// continues the scan after its frames); closed with unsaved frames, the scan is autosaved and
+// the next window offers it; opened from the offer and saved elsewhere, the autosave goes.
+// HDRF_DOCS_SHOTS=DIR saves the offer and the reopened window for docs/studio.md.
+TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  QTemporaryDir tmp;
+  const QString saved = tmp.filePath("room.hdrproj");
+  const std::string spec = "synthetic:frames=40,size=160x120,ae=flicker";
+  int saved_frames = 0;
+  {
+    StudioOptions o;
+    o.source = QString::fromStdString(spec);
+    o.frames = 12;
+    o.autostart = true;
+    o.offer_recovery = false;
+    MainWindow w(o);
+    w.show();
+    ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= 11; }, 120000));
+    QTest::qWait(500);  // paused (a few frames after the 12th: the pause is queued)
+    saved_frames = w.latest()->report.index + 1;
+    w.SaveProject(saved);
+    ASSERT_TRUE(WaitUntil([&] { return w.project_path() == saved; }, 60000)) << w.error_text().toStdString();
+    w.close();
+  }
+  EXPECT_EQ(io::LoadProject(saved.toStdString()).resume.frames, saved_frames);
+  EXPECT_TRUE(io::FindRecoveryFiles().empty());  // everything was saved: nothing to recover
+  int frames_left = 0;
+  {
+    StudioOptions o;
+    o.project = saved;
+    o.offer_recovery = false;
+    MainWindow w(o);
+    w.resize(1400, 900);
+    w.show();
+    ASSERT_TRUE(WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == saved_frames; }, 60000))
+        << w.error_text().toStdString();
+    ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000));
+    ASSERT_TRUE(WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 60000));
+    EXPECT_EQ(w.source_text().toStdString(), spec);
+    EXPECT_TRUE(w.windowTitle().contains("room.hdrproj"));
+    if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) w.grab().save(QString(shots) + "/studio_project.png");
+    w.StartScan();
+    ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= saved_frames + 5; }, 120000));
+    w.PauseScan();
+    QTest::qWait(500);
+    // Frame indices go on from the project's: the scan continued, it did not start again.
+    EXPECT_EQ(w.latest()->trajectory.size(), std::size_t(w.latest()->report.index + 1));
+    EXPECT_FALSE(w.health_text().contains("lost", Qt::CaseInsensitive));
+    frames_left = w.latest()->report.index + 1;
+    w.close();
+  }
+  // Closed with frames not saved: autosaved, and offered by the next window.
+  const auto found = io::FindRecoveryFiles();
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(io::LoadProject(found.front()).resume.frames, frames_left);
+  {
+    StudioOptions o;
+    MainWindow w(o);
+    w.resize(1400, 900);
+    w.show();
+    ASSERT_TRUE(WaitUntil([&] { return w.recovery_offer() != nullptr; }, 20000));
+    QMessageBox* box = w.recovery_offer();
+    EXPECT_TRUE(box->text().contains(QString::fromStdString(found.front().string())));
+    if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) box->grab().save(QString(shots) + "/studio_recovery.png");
+    QAbstractButton* open = nullptr;
+    for (QAbstractButton* b : box->buttons())
+      if (b->text() == "Open") open = b;
+    ASSERT_NE(open, nullptr);
+    open->click();
+    ASSERT_TRUE(WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == frames_left; }, 60000));
+    EXPECT_TRUE(w.project_path().isEmpty());  // a recovered scan is saved where the user says
+    const QString again = tmp.filePath("recovered.hdrproj");
+    w.SaveProject(again);
+    ASSERT_TRUE(WaitUntil([&] { return w.project_path() == again; }, 60000)) << w.error_text().toStdString();
+    EXPECT_FALSE(std::filesystem::exists(found.front()));  // the autosave went once saved
+    w.close();
+  }
+  EXPECT_TRUE(io::FindRecoveryFiles().empty());
+  EXPECT_EQ(io::LoadProject(tmp.filePath("recovered.hdrproj").toStdString()).resume.frames, frames_left);
+}
+
 TEST(StudioWindow, ASourceErrorShowsAMessage) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
@@ -275,6 +365,8 @@ int main(int argc, char** argv) {
   if (!display) return RUN_ALL_TESTS();
   QTemporaryDir config;  // never the user's own studio settings
   qputenv("XDG_CONFIG_HOME", config.path().toUtf8());
+  QTemporaryDir state;  // nor its autosaves (recovery files)
+  qputenv("XDG_STATE_HOME", state.path().toUtf8());
   hdrf::gui::VtkView::SetDefaultSurfaceFormat();
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusionTest");

@@ -21,8 +21,7 @@ using test::Metres;
 
 TEST(Mesh, SphereIsAccurateAndManifold) {
   volume::VolumeOptions vo;
-  vo.resolution = 64;
-  vo.size_m = 2.0f;
+  vo.voxel_m = 2.0f / 64;
   volume::Volume vol(vo);
   // Integrate an analytic sphere seen from six directions (exact depth maps).
   const float R = 0.5f;
@@ -75,9 +74,9 @@ TEST(Mesh, SphereIsAccurateAndManifold) {
   for (std::size_t i = 0; i < m.position.size(); ++i) outward += Dot(m.normal[i], Normalized(m.position[i]));
   std::printf("sphere mesh: %zu vertices, radial error median %.4f m, 99th percentile %.4f m (voxel "
               "%.4f), %ld of %zu edges on a hole boundary, mean normal.radial %.3f\n", m.position.size(),
-              med, worst, vo.voxel_m(), boundary, edges.size(), outward / double(m.position.size()));
-  EXPECT_LT(med, 0.1 * vo.voxel_m());
-  EXPECT_LT(worst, 0.5 * vo.voxel_m());
+              med, worst, vo.voxel_m, boundary, edges.size(), outward / double(m.position.size()));
+  EXPECT_LT(med, 0.1 * vo.voxel_m);
+  EXPECT_LT(worst, 0.5 * vo.voxel_m);
   EXPECT_EQ(over, 0);  // no edge shared by more than two triangles
   // Known gap: cubes with an unobserved corner are skipped, leaving small holes where the
   // six views meet at grazing angles (docs/engine.md); 420 of ~43k edges today.

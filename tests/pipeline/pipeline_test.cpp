@@ -22,15 +22,17 @@ using test::Metres;
 
 TEST(PipelineOptions, ImpossibleVolumesAreRefusedByName) {
   volume::VolumeOptions o;
-  o.size_m = 0;
-  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.size_m", "positive"});
+  o.voxel_m = 0;
+  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.voxel_m", "between 0.001 and 1 metre"});
   o = {};
-  o.resolution = 12;
-  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.resolution", "multiple of 8"});
+  o.voxel_m = std::nanf("");
+  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.voxel_m"});
   o = {};
-  o.resolution = 4096;
-  o.max_memory_mb = 256;
-  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.resolution", "MiB"});
+  o.truncation_voxels = 1e6f;
+  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.truncation_voxels", "64"});
+  o = {};
+  o.max_memory_mb = 1e308;
+  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.max_memory_mb"});
   pipeline::PipelineOptions po;
   po.pcf = 7;
   test::ExpectErrorContaining([&] { po.Check(); }, {"'pcf'"});
@@ -65,7 +67,7 @@ std::vector<FrameInput> Inputs(int n) {
 TEST(ScanSession, OwnsTheTrajectoryReportsAndTimings) {
   const auto frames = Inputs(6);
   PipelineOptions o;
-  o.volume.resolution = 128;
+  o.volume.voxel_m = 0.047f;
   ScanSession s(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
   for (const auto& f : frames) s.Process(f);
   ASSERT_EQ(s.frames(), 6);
@@ -99,7 +101,7 @@ TEST(ScanSession, OwnsTheTrajectoryReportsAndTimings) {
 TEST(ScanSession, RunsAreReproducible) {
   const auto frames = Inputs(8);
   PipelineOptions o;
-  o.volume.resolution = 128;
+  o.volume.voxel_m = 0.047f;
   ScanSession a(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
   ScanSession b(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
   for (const auto& f : frames) a.Process(f), b.Process(f);

@@ -54,12 +54,13 @@ TEST(Settings, EachSettingSetsExactlyItsOwnField) {
 
 TEST(Settings, BadValuesAreRefusedNamingTheKey) {
   PipelineOptions o;
-  test::ExpectErrorContaining([&] { FindSetting("volume.resolution").set(o, "9000"); },
-                              {"'volume.resolution'", "out of range", "8 .. 4096 voxels"});
-  test::ExpectErrorContaining([&] { FindSetting("volume.resolution").set(o, "64.5"); },
-                              {"'volume.resolution'", "not a whole number"});
-  test::ExpectErrorContaining([&] { FindSetting("volume.size_m").set(o, "6 m"); }, {"'volume.size_m'", "not a number"});
-  test::ExpectErrorContaining([&] { FindSetting("volume.size_m").set(o, "nan"); }, {"'volume.size_m'", "not a number"});
+  test::ExpectErrorContaining([&] { FindSetting("volume.voxel_m").set(o, "2"); },
+                              {"'volume.voxel_m'", "out of range", "0.001 .. 1 m"});
+  test::ExpectErrorContaining([&] { FindSetting("volume.voxel_m").set(o, "1 cm"); }, {"'volume.voxel_m'", "not a number"});
+  test::ExpectErrorContaining([&] { FindSetting("volume.voxel_m").set(o, "nan"); }, {"'volume.voxel_m'", "not a number"});
+  // The fixed cube's settings are gone; asking for them says what replaced them.
+  test::ExpectErrorContaining([&] { FindSetting("volume.resolution"); }, {"'volume.resolution'", "volume.voxel_m"});
+  test::ExpectErrorContaining([&] { FindSetting("volume.size_m"); }, {"'volume.size_m'", "no fixed extent"});
   test::ExpectErrorContaining([&] { FindSetting("volume.max_memory_mb").set(o, "1e308"); },
                               {"'volume.max_memory_mb'", "out of range"});
   test::ExpectErrorContaining([&] { FindSetting("tracker.kind").set(o, "orb"); }, {"'tracker.kind'", "one of"});

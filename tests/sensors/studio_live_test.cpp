@@ -209,6 +209,7 @@ int main(int argc, char** argv) {
   setenv("HDRF_TEST_DEVICE_FRAMES_PER_VIEW", "8", 1);
   setenv("XDG_DATA_HOME", (hdrf::gui::g_root / "data").c_str(), 1);
   setenv("XDG_CONFIG_HOME", (hdrf::gui::g_root / "config").c_str(), 1);
+  setenv("XDG_STATE_HOME", (hdrf::gui::g_root / "state").c_str(), 1);  // autosaves stay in the test folder
   hdrf::gui::VtkView::SetDefaultSurfaceFormat();
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusionTest");

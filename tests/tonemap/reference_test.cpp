@@ -136,7 +136,7 @@ TEST(PfstmoModelRender, BothOperatorsMatchTheReference) {
   so.frames = 40;
   sim::SyntheticSource src(so);
   pipeline::PipelineOptions po;
-  po.volume.resolution = 128;
+  po.volume.voxel_m = 0.047f;
   pipeline::ScanSession session(po, sim::SimCamera(so.width, so.height), src.sensor());
   while (!src.done()) {
     session.Process(test::AsInput(src.Next()));

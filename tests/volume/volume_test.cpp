@@ -17,6 +17,7 @@
 #include "radiometry/radiance.h"
 #include "sim/builtin_sensor.h"
 #include "volume/volume.h"
+#include "eval/eval.h"
 
 namespace hdrf {
 namespace {
@@ -45,21 +46,19 @@ TEST(Volume, FusedDepthMatchesTruthAndRaycastAgrees) {
   std::vector<double> err;
   long inside = 0;
   const Pose T = T0inv * last.T_world_camera;
-  const float half = 0.5f * vo.size_m - 2 * vo.truncation_m();
   for (int y = 0; y < 240; ++y)
     for (int x = 0; x < 320; ++x) {
       const float z = last.depth_true(x, y);
       if (!(z > 0)) continue;
       const Float3 pc = cam.BackProject(float(x), float(y), z);
       const Vec3 pw = T * Vec3(pc.x, pc.y, pc.z);
-      if (pw.cwiseAbs().maxCoeff() > half) continue;  // outside the volume's cube
       ++inside;
       if (rend.depth(x, y) > 0) err.push_back(std::abs(rend.depth(x, y) - z));
     }
   const double coverage = double(err.size()) / double(inside);
   std::printf("ray cast vs true depth: median |error| %.4f m (voxel %.4f), coverage %.3f, %zu bricks\n",
-              Median(err), vo.voxel_m(), coverage, vol.allocated_bricks());
-  EXPECT_LT(Median(err), 0.25 * vo.voxel_m());
+              Median(err), vo.voxel_m, coverage, vol.allocated_bricks());
+  EXPECT_LT(Median(err), 0.25 * vo.voxel_m);
   EXPECT_GT(coverage, 0.9);
 }
 
@@ -159,6 +158,64 @@ TEST(VoxelEncoding, CompactVoxelsKeepTheAccuracyOfFullOnes) {
   EXPECT_LT(res[volume::VoxelEncoding::kCompact].bytes, 0.5 * double(full.bytes));
 }
 
+// The built-in room, 300 frames, at the default voxel size: the volume has no bounds, so
+// every surface the sensor measured is in the mesh (no cut planes). Against the largest
+// fixed cube the engine used to need for this room (10 m over 512^3, 19.5 mm voxels, with a
+// dense 64^3 brick index of 1 MiB), emulated here by the same voxel size: completeness (true
+// surface within 2 cm of the mesh) at least as high, with less memory.
+TEST(UnboundedVolume, RoomHasNoCutPlanesAndIsCompleteWithLessMemoryThanTheCube) {
+  const auto frames = Frames(300, sim::AeMode::kFlicker);
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  // True surface samples the sensor measured (every 8th pixel of every 10th frame), in the
+  // model's frame (the first camera's).
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  std::vector<Float3> truth;
+  for (std::size_t i = 0; i < frames.size(); i += 10) {
+    const Pose T = T0inv * frames[i].T_world_camera;
+    for (int y = 0; y < 240; y += 8)
+      for (int x = 0; x < 320; x += 8) {
+        const float z = frames[i].depth_true(x, y);
+        if (!(z > 0) || frames[i].depth(x, y) == 0) continue;
+        const Float3 pc = cam.BackProject(float(x), float(y), z);
+        const Vec3 pw = T * Vec3(pc.x, pc.y, pc.z);
+        truth.push_back({float(pw.x()), float(pw.y()), float(pw.z())});
+      }
+  }
+  struct Run {
+    double completeness = 0, mib = 0, extent_m = 0;
+    std::size_t bricks = 0, triangles = 0;
+  };
+  auto scan = [&](float voxel_m) {
+    pipeline::PipelineOptions po;
+    if (voxel_m > 0) po.volume.voxel_m = voxel_m;
+    pipeline::Pipeline pipe(po, cam, sim::SyntheticSource(sim::SimOptions()).sensor());
+    for (const auto& f : frames) pipe.Process(test::AsInput(f));
+    const mesh::Mesh m = pipe.ExtractMesh();
+    const volume::Volume& v = pipe.DownloadVolume();
+    const auto box = v.Bounds();
+    Run r;
+    r.completeness = eval::SurfaceCompleteness(m, truth, 0.02).fraction();
+    r.bricks = v.allocated_bricks();
+    r.mib = double(v.bytes()) / (1 << 20);
+    r.extent_m = std::max({box[1].x - box[0].x, box[1].y - box[0].y, box[1].z - box[0].z});
+    r.triangles = m.triangles.size();
+    EXPECT_FALSE(v.full()) << v.full_reason();
+    return r;
+  };
+  const Run def = scan(0);
+  const Run cube = scan(10.f / 512);
+  // The fixed cube held the same bricks behind a dense index instead of hash tables.
+  const double cube_mib = double(cube.bricks) * double(volume::VolumeOptions().brick_bytes()) / (1 << 20) + 1.0;
+  std::printf("default %.1f mm voxels: completeness %.4f, %zu bricks, %.1f MiB, model %.2f m across, %zu triangles\n"
+              "10 m / 512^3 cube (19.5 mm): completeness %.4f, %zu bricks, %.1f MiB with its index\n",
+              1000 * volume::VolumeOptions().voxel_m, def.completeness, def.bricks, def.mib, def.extent_m, def.triangles,
+              cube.completeness, cube.bricks, cube_mib);
+  EXPECT_GT(def.extent_m, 6.0);  // wider than the old default 6 m cube: nothing cut at its faces
+  EXPECT_GE(def.completeness, cube.completeness);
+  EXPECT_GE(def.completeness, 0.95);
+  EXPECT_LT(def.mib, cube_mib);
+}
+
 }  // namespace
 }  // namespace hdrf
 
@@ -191,7 +248,9 @@ TEST(IntegrateVoxel, RunningMeansOfDistanceAndRadiance) {
   a.cos_tau1 = 0.25f;
   // Voxel (0,0,0) of the brick whose corner is at the origin: centre (0.005, 0.005, z).
   auto voxel_at = [&](float z) {
-    a.origin = Float3{0.f, 0.f, z - 0.005f};
+    Pose shift = Pose::Identity();  // the voxel's centre moved to depth z, as a camera offset
+    shift.translation() = Vec3(0, 0, z - 0.005f);
+    a.T_camera_world = ToRigidTransform(shift);
     FullVoxel v{};
     const int done = IntegrateVoxel(a, 0, 0, 0, 0, v);
     return std::pair<int, Voxel>{done, v.Decode()};

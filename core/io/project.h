@@ -1,0 +1,74 @@
+// Project files (docs/formats.md, "Project files"): one scan saved to be reopened, exported
+// or continued later in the same coordinates. One file, `NAME.hdrproj`: a header, then
+// chunks, each with its size and a CRC-32, so that a truncated or damaged file is refused
+// naming the chunk. Saving writes a temporary sibling and renames it over the file: a save
+// that is interrupted (a crash, a kill, a full disk) leaves the previous save intact.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pipeline/keyframes.h"
+#include "pipeline/options.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/scan_session.h"
+#include "radiometry/sensor.h"
+#include "volume/volume.h"
+
+namespace hdrf::io {
+
+inline constexpr int kProjectVersion = 1;
+inline constexpr const char* kProjectExtension = ".hdrproj";
+
+struct Project {
+  int version = kProjectVersion;
+  std::string source;                    // the source the scan read, as it described itself
+  std::string source_spec;               // ... and as it was opened (`scan SOURCE`), if known
+  std::string saved_at;                  // UTC, ISO 8601
+  bool finished = false;                 // false: an autosave of a scan still running
+  pipeline::PipelineOptions options;
+  SensorInfo sensor;
+  volume::Volume model{volume::VolumeOptions{}};
+  pipeline::ResumePoint resume;
+  std::vector<pipeline::FrameReport> reports;  // one per frame: pose, tracking, exposure, times
+  std::vector<pipeline::Keyframe> keyframes;
+  int keyframes_thinned = 0;
+  int pcf_power() const { return options.pcf; }
+};
+
+struct ProjectSaveInfo {
+  std::string source;       // the source's description
+  std::string source_spec;  // what it was opened from ("" if not to be reopened)
+  bool finished = false;
+};
+
+// Saves the session (the model downloaded from wherever it lives). Throws InputError naming
+// the file where it cannot be written; the previous file is then untouched.
+void SaveProject(const std::filesystem::path& file, pipeline::ScanSession& session, const ProjectSaveInfo& info);
+
+// Reads a project; throws InputError naming the file and what is wrong (not a project, a
+// newer version, a damaged or missing chunk, a model that does not fit its settings).
+Project LoadProject(const std::filesystem::path& file);
+
+// A session that goes on from the project: its settings (with `overrides` applied on top,
+// which may not change the model's voxel size, truncation or encoding) and its camera.
+std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& project,
+                                                     const std::function<void(pipeline::PipelineOptions&)>& overrides = {});
+
+// Recovery files: where autosaves of unfinished scans go (XDG state home,
+// $XDG_STATE_HOME/hdrfusion/recovery, else ~/.local/state/hdrfusion/recovery), and the ones
+// a crash left there, newest first.
+std::filesystem::path RecoveryFolder();
+std::filesystem::path RecoveryFileFor(const std::filesystem::path& project_or_name);
+std::vector<std::filesystem::path> FindRecoveryFiles();
+
+// The per-frame report as stored in report.json and project files, and back.
+nlohmann::json FrameReportToJson(const pipeline::FrameReport& r);
+pipeline::FrameReport FrameReportFromJson(const std::filesystem::path& file, const nlohmann::json& j);
+
+}  // namespace hdrf::io

@@ -1,0 +1,175 @@
+// hdrfusion scan --save / --resume / --autosave, and export and eval reading a project, run as
+// a user runs them; and a scan killed mid-save (kill -9) leaves a recovery file that opens and
+// resumes.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "io/project.h"
+#include "io/text_table.h"
+#include "io/tum.h"
+#include "support/test_support.h"
+
+namespace hdrf {
+namespace {
+
+namespace fs = std::filesystem;
+using RunResult = test::CommandResult;
+
+RunResult RunCli(const std::string& args) { return test::RunCommand(std::string(HDRF_CLI) + " " + args); }
+
+// Autosaves of these tests go to their own folder, not the user's.
+class ProjectCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    state_ = std::make_unique<test::TempDir>();
+    setenv("XDG_STATE_HOME", state_->path().c_str(), 1);
+  }
+  void TearDown() override { unsetenv("XDG_STATE_HOME"); }
+  std::unique_ptr<test::TempDir> state_;
+};
+
+TEST_F(ProjectCli, SaveResumeExportAndEval) {
+  test::TempDir dir;
+  const std::string seq = (dir / "seq").string();
+  ASSERT_EQ(RunCli("simulate --out " + seq + " --frames 60 --size 160x120 --ae flicker").status, 0);
+  RunResult r = RunCli("scan " + seq + " --out " + (dir / "whole").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "whole" / "scan.hdrproj")) << r.output;
+  // Half, saved to a named project; then the rest, resumed from it.
+  const std::string half = (dir / "half.hdrproj").string();
+  r = RunCli("scan " + seq + " --out " + (dir / "a").string() + " --frames 30 --save " + half);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = RunCli("scan --resume " + half + " " + seq + " --out " + (dir / "b").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("after its 30 frames"), std::string::npos) << r.output;
+  const auto whole = io::ReadTrajectory(dir / "whole" / "trajectory.txt");
+  const auto resumed = io::ReadTrajectory(dir / "b" / "trajectory.txt");
+  ASSERT_EQ(whole.size(), 60u);
+  ASSERT_EQ(resumed.size(), 60u);
+  double d = 0;
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    EXPECT_EQ(whole[i].timestamp, resumed[i].timestamp);
+    d = std::max(d, (whole[i].T_world_camera.translation() - resumed[i].T_world_camera.translation()).norm());
+  }
+  EXPECT_LE(d, 0.001);
+  EXPECT_EQ(test::ReadText(dir / "whole" / "mesh.ply"), test::ReadText(dir / "b" / "mesh.ply"));
+  // Export and eval read the project.
+  r = RunCli("export " + (dir / "b" / "scan.hdrproj").string() + " --out " + (dir / "asset").string() +
+             " --formats ply,gltf --texel-mm 8");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "asset" / "mesh.glb"));
+  r = RunCli("eval " + seq + " " + (dir / "b" / "scan.hdrproj").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto ev = nlohmann::json::parse(test::ReadText(dir / "b" / "scan.eval.json"));
+  EXPECT_EQ(ev["pairs"].get<int>(), 60);
+  EXPECT_LT(ev["ate_rmse_m"].get<double>(), 0.05);
+  EXPECT_GT(ev["mesh_vertices"].get<int>(), 1000);
+  // A project does not go on with another camera.
+  const std::string small = (dir / "small").string();
+  ASSERT_EQ(RunCli("simulate --out " + small + " --frames 4 --size 64x48").status, 0);
+  r = RunCli("scan --resume " + half + " " + small + " --out " + (dir / "c").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("half.hdrproj"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("160x120 camera"), std::string::npos) << r.output;
+  // Nor with settings that change its model.
+  r = RunCli("scan --resume " + half + " " + seq + " --out " + (dir / "c").string() + " --voxel-size 0.01");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("project's own settings"), std::string::npos) << r.output;
+  // Finished scans leave no recovery file.
+  EXPECT_TRUE(io::FindRecoveryFiles().empty());
+}
+
+// A memory budget too small for the room: the scan says so once, goes on, keeps the model,
+// and the project exports.
+TEST_F(ProjectCli, BudgetReachedIsSaidAndTheModelIsKeptAndExports) {
+  test::TempDir dir;
+  RunResult r = RunCli("scan synthetic:frames=20,size=160x120 --out " + (dir / "s").string() +
+                       " --volume.max_memory_mb 2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string said = "the volume is full: the model reached its memory budget of 2 MiB";
+  const std::size_t at = r.output.find(said);
+  EXPECT_NE(at, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(said, at + 1), std::string::npos) << "said more than once:\n" << r.output;
+  const auto rep = nlohmann::json::parse(test::ReadText(dir / "s" / "report.json"));
+  EXPECT_TRUE(rep["volume"]["full"].get<bool>());
+  EXPECT_EQ(rep["frames"].get<int>(), 20);
+  EXPECT_LE(rep["volume"]["bytes"].get<double>(), 2.02 * (1 << 20));
+  r = RunCli("export " + (dir / "s" / "scan.hdrproj").string() + " --out " + (dir / "e").string() +
+             " --formats ply --no-texture");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "e" / "mesh.ply"));
+}
+
+pid_t Spawn(const std::string& command) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", ("exec " + command + " >/dev/null 2>&1").c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+// kill -9 while autosaving (an autosave after every frame; the kill sent while the partial
+// file of the next save exists): the earlier recovery file always opens, and resumes.
+TEST_F(ProjectCli, KilledMidSaveLeavesARecoveryFileThatOpensAndResumes) {
+  test::TempDir dir;
+  const std::string spec = "synthetic:frames=400,size=160x120";
+  int mid_save = 0, opened = 0;
+  fs::path last, kept;  // the last recovery file seen, and where it was moved meanwhile
+  for (int attempt = 0; attempt < 6 && mid_save < 2; ++attempt) {
+    const pid_t pid = Spawn(std::string(HDRF_CLI) + " scan " + spec + " --out " + (dir / "k").string() +
+                            " --autosave 0.0001");
+    // Until the first autosave exists; then until the next one is being written (its
+    // partial file exists), and kill it there.
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto waited = [&] { return std::chrono::steady_clock::now() - t0 > std::chrono::seconds(60); };
+    while (io::FindRecoveryFiles().empty() && !waited()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::this_thread::sleep_for(std::chrono::milliseconds(37 * attempt));
+    const auto partial = [&] {
+      for (const fs::path& f : io::FindRecoveryFiles())
+        if (fs::exists(io::TemporarySibling(f))) return true;
+      return false;
+    };
+    while (!partial() && !waited()) std::this_thread::sleep_for(std::chrono::microseconds(100));
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the scan ended before it was killed";
+    for (const fs::path& f : io::FindRecoveryFiles()) {
+      if (fs::exists(io::TemporarySibling(f))) ++mid_save;
+      const io::Project p = io::LoadProject(f);  // throws (and fails the test) if unreadable
+      EXPECT_FALSE(p.finished);
+      EXPECT_GT(p.resume.frames, 0);
+      ++opened;
+      fs::remove(io::TemporarySibling(f));
+      last = f;
+      kept = dir / ("seen-" + std::to_string(opened) + ".hdrproj");
+      fs::rename(f, kept);
+    }
+  }
+  std::printf("%d recovery files opened after kill -9; %d of the kills landed mid-save\n", opened, mid_save);
+  EXPECT_GE(mid_save, 1);
+  ASSERT_GE(opened, 1);
+  // The next scan offers the recovery file; resuming it goes on after its frames.
+  fs::rename(kept, last);
+  RunResult r = RunCli("scan " + spec + " --out " + (dir / "other").string() + " --frames 2 --autosave 0");
+  EXPECT_NE(r.output.find("unfinished scan was autosaved to " + last.string()), std::string::npos) << r.output;
+  const int frames = io::LoadProject(last).resume.frames;
+  r = RunCli("scan --resume " + last.string() + " " + spec + " --out " + (dir / "r").string() + " --frames 5");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("after its " + std::to_string(frames) + " frames"), std::string::npos) << r.output;
+  EXPECT_EQ(io::ReadTrajectory(dir / "r" / "trajectory.txt").size(), std::size_t(frames + 5));
+}
+
+}  // namespace
+}  // namespace hdrf
