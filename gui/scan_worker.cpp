@@ -192,21 +192,26 @@ void ScanWorker::Publish() {
   mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
   if (!session_->reports().empty()) s->report = session_->reports().back();
   s->images.render = pipe.Render(pipe.pose());
-  s->camera = session_->sensor().camera;
-  s->trajectory = session_->poses();
-  for (const pipeline::FrameReport& r : session_->reports()) {
-    s->exposure_estimated.push_back(r.exposure_ratio);
-    s->exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
-  }
-  s->mesh = mesh_;
-  const pipeline::VolumeStats vs = pipe.volume_stats();
-  s->volume_bytes = vs.bytes;
-  s->volume_full = vs.full_reason;
-  s->volume_budget_mb = pipe.options().volume.max_memory_mb;
-  s->bricks = vs.allocated_bricks;
-  s->frames_total = source_ ? source_->size() : -1;
-  s->device = DeviceName(pipe.device());
+  FillScanState(*s);
   emit snapshot(std::move(s));
+}
+
+void ScanWorker::FillScanState(Snapshot& s) const {
+  const pipeline::Pipeline& pipe = session_->pipeline();
+  s.camera = session_->sensor().camera;
+  s.trajectory = session_->poses();
+  for (const pipeline::FrameReport& r : session_->reports()) {
+    s.exposure_estimated.push_back(r.exposure_ratio);
+    s.exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+  }
+  s.mesh = mesh_;
+  const pipeline::VolumeStats vs = pipe.volume_stats();
+  s.volume_bytes = vs.bytes;
+  s.volume_full = vs.full_reason;
+  s.volume_budget_mb = pipe.options().volume.max_memory_mb;
+  s.bricks = vs.allocated_bricks;
+  s.frames_total = source_ ? source_->size() : -1;
+  s.device = DeviceName(pipe.device());
 }
 
 void ScanWorker::Configure(const ScanSettings& s) {
@@ -332,20 +337,7 @@ void ScanWorker::Step() {
     }
     s->color = std::move(f.color);
     s->images = pipe.DownloadViews();
-    s->camera = source_->sensor().camera;
-    s->trajectory = session_->poses();
-    for (const pipeline::FrameReport& r : session_->reports()) {
-      s->exposure_estimated.push_back(r.exposure_ratio);
-      s->exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
-    }
-    s->mesh = mesh_;
-    const pipeline::VolumeStats vs = pipe.volume_stats();
-    s->volume_bytes = vs.bytes;
-    s->volume_full = vs.full_reason;
-    s->volume_budget_mb = pipe.options().volume.max_memory_mb;
-    s->bricks = s->report.allocated_bricks;
-    s->frames_total = source_->size();
-    s->device = DeviceName(pipe.device());
+    FillScanState(*s);
     if (live_) s->live = Status();
     emit snapshot(std::move(s));
     Autosave(false);

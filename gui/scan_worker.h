@@ -154,6 +154,7 @@ class ScanWorker : public QObject {
   void Autosave(bool force);  // to recovery_ when due (or now), if frames were added since
   void DropRecovery();        // the recovery file is no longer needed
   void Publish();             // a snapshot of the model as it stands (after opening a project)
+  void FillScanState(Snapshot& s) const;  // trajectory, exposures, mesh, volume, device
   void OpenSource();
   void Lost();     // the camera was unplugged: pause, keep the model, wait for it
   void TryReconnect(int attempt);
