@@ -352,6 +352,7 @@ void MainWindow::BuildStatus() {
   frames_label_ = new QLabel(tr("No frame yet"));
   health_ = new QLabel(tr("Tracking: -"));
   health_->setObjectName("health");
+  health_->setWordWrap(true);
   error_ = new QLabel;
   error_->setObjectName("error");
   error_->setWordWrap(true);
@@ -691,20 +692,28 @@ void MainWindow::Render() {
     view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance));
   }
   view3d_->SetTrajectory(s->trajectory, s->camera);
+  view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
   // Status.
   const auto& r = s->report;
   frames_label_->setText(tr("Frame %1%2 on the %3")
                              .arg(r.index + 1)
                              .arg(s->frames_total > 0 ? QStringLiteral(" / %1").arg(s->frames_total) : QString())
                              .arg(QString::fromStdString(s->device).toUpper()));
+  const QString far = r.depth_beyond_far > 0.25
+                          ? "\n" + tr("%1 % of the view lies beyond %2 m, past the model's ray cast: tracking uses "
+                                       "nearer surfaces (volume.raycast_far_m)")
+                                        .arg(int(100 * r.depth_beyond_far))
+                                        .arg(s->raycast_far_m, 0, 'f', 1)
+                          : QString();
   if (r.tracking.lost) {
-    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(QString::fromStdString(r.tracking.why)));
+    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(QString::fromStdString(r.tracking.why)) + far);
     health_->setStyleSheet("QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
   } else {
     health_->setText(tr("Tracking OK: %1 % of pixels matched, %2 iterations")
                          .arg(int(100 * r.tracking.inlier_share))
-                         .arg(r.tracking.iterations));
-    health_->setStyleSheet("QLabel { color: white; background: #207040; padding: 3px; }");
+                         .arg(r.tracking.iterations) + far);
+    health_->setStyleSheet(far.isEmpty() ? "QLabel { color: white; background: #207040; padding: 3px; }"
+                                         : "QLabel { color: white; background: #a07010; padding: 3px; }");
   }
   const auto& m = r.ms;
   stages_->setText(tr("<table><tr><td>convert</td><td align=right>%1 ms</td></tr><tr><td>normalize</td><td align=right>%2 ms</td></tr>"

@@ -208,6 +208,8 @@ void ScanWorker::FillScanState(Snapshot& s) const {
   const pipeline::VolumeStats vs = pipe.volume_stats();
   s.volume_bytes = vs.bytes;
   s.volume_full = vs.full_reason;
+  s.volume_bounds = vs.bounds;
+  s.raycast_far_m = pipe.options().volume.raycast_far_m;
   s.volume_budget_mb = pipe.options().volume.max_memory_mb;
   s.bricks = vs.allocated_bricks;
   s.frames_total = source_ ? source_->size() : -1;

@@ -16,6 +16,7 @@
 
 #include <QImage>
 #include <QObject>
+#include <array>
 #include <atomic>
 #include <filesystem>
 #include <memory>
@@ -77,6 +78,8 @@ struct Snapshot {
   std::size_t volume_bytes = 0, bricks = 0;
   double volume_budget_mb = 0;       // volume.max_memory_mb
   std::string volume_full;           // why the volume stopped growing ("" while it grows)
+  std::array<Float3, 2> volume_bounds{};  // the allocated region (world box)
+  double raycast_far_m = 0;          // the ray cast's reach (volume.raycast_far_m)
   int frames_total = -1;             // of the source (-1: unbounded)
   std::string device;                // "cpu" or "cuda"
 };

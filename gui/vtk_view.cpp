@@ -33,9 +33,9 @@ struct VtkView::Impl {
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkGenericRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
-  vtkNew<vtkPolyData> mesh, path, frustum;
-  vtkNew<vtkPolyDataMapper> mesh_mapper, path_mapper, frustum_mapper;
-  vtkNew<vtkActor> mesh_actor, path_actor, frustum_actor;
+  vtkNew<vtkPolyData> mesh, path, frustum, region;
+  vtkNew<vtkPolyDataMapper> mesh_mapper, path_mapper, frustum_mapper, region_mapper;
+  vtkNew<vtkActor> mesh_actor, path_actor, frustum_actor, region_actor;
   vtkNew<vtkCallbackCommand> make_current, is_current, frame;
 };
 
@@ -80,7 +80,8 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<I
   d_->window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d_->make_current);
   d_->window->AddObserver(vtkCommand::WindowIsCurrentEvent, d_->is_current);
   d_->window->AddObserver(vtkCommand::WindowFrameEvent, d_->frame);
-  // Actors: mesh (vertex colours), trajectory (yellow), frustum (red).
+  // Actors: mesh (vertex colours), trajectory (yellow), frustum (red), the region the
+  // volume has allocated (a light blue box).
   d_->mesh_mapper->SetInputData(d_->mesh);
   d_->mesh_mapper->SetScalarModeToUsePointData();
   d_->mesh_actor->SetMapper(d_->mesh_mapper);
@@ -97,6 +98,34 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<I
   d_->renderer->AddActor(d_->mesh_actor);
   d_->renderer->AddActor(d_->path_actor);
   d_->renderer->AddActor(d_->frustum_actor);
+  d_->region_mapper->SetInputData(d_->region);
+  d_->region_mapper->ScalarVisibilityOff();
+  d_->region_actor->SetMapper(d_->region_mapper);
+  d_->region_actor->GetProperty()->SetColor(0.45, 0.7, 1.0);
+  d_->region_actor->GetProperty()->SetLineWidth(1);
+  d_->renderer->AddActor(d_->region_actor);
+}
+
+void VtkView::SetRegion(const Float3& lo, const Float3& hi) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  region_ = {lo, hi};
+  if (hi.x > lo.x && hi.y > lo.y && hi.z > lo.z) {
+    for (int i = 0; i < 8; ++i)
+      pts->InsertNextPoint(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    // The 12 edges: corners differing in one coordinate bit.
+    for (int i = 0; i < 8; ++i)
+      for (int bit : {1, 2, 4})
+        if (!(i & bit)) {
+          const vtkIdType e[2] = {i, i | bit};
+          lines->InsertNextCell(2, e);
+        }
+  }
+  d_->region->SetPoints(pts);
+  d_->region->SetLines(lines);
+  d_->region->Modified();
+  dirty_ = true;
+  update();
 }
 
 VtkView::~VtkView() {

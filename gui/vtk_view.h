@@ -5,6 +5,7 @@
 #pragma once
 
 #include <QOpenGLWidget>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -24,6 +25,9 @@ class VtkView : public QOpenGLWidget {
   // The mesh with one display colour per vertex.
   void SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours);
   void SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera& cam);
+  // The region the volume has allocated (world box); an empty box hides it.
+  void SetRegion(const Float3& lo, const Float3& hi);
+  std::array<Float3, 2> region() const { return region_; }
   void ResetView();
   std::size_t mesh_triangles() const { return triangles_; }
   // The last rendered frame (for tests and screenshots).
@@ -49,6 +53,7 @@ class VtkView : public QOpenGLWidget {
   bool dirty_ = true;
   bool first_mesh_ = true;
   std::size_t triangles_ = 0;
+  std::array<Float3, 2> region_{};
 };
 
 }  // namespace hdrf::gui

@@ -188,7 +188,7 @@ Command AddScanCommand(CLI::App& app) {
     }();
     auto last_save = std::chrono::steady_clock::now();
     std::string failure, autosave_failure;
-    bool stopped = false;
+    bool stopped = false, far_said = false;
     Progress progress("scan", total);
     {
       StopOnInterrupt stop;  // Ctrl-C ends the scan early, keeping what it built
@@ -198,6 +198,14 @@ Command AddScanCommand(CLI::App& app) {
           const pipeline::FrameReport& r = session.Process(f);
           if (r.tracking.lost)
             std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
+          // Said when a quarter of the view first lies beyond the ray cast, again only after it
+          // came back within it.
+          if (r.depth_beyond_far > 0.25 && !far_said)
+            std::fprintf(stderr, "\nscan: warning: frame %d: %.0f %% of the depth lies beyond %.1f m, past the model's "
+                                 "ray cast (volume.raycast_far_m): those surfaces are fused but tracking matches only "
+                                 "nearer ones\n",
+                         r.index, 100 * r.depth_beyond_far, o.volume.raycast_far_m);
+          far_said = r.depth_beyond_far > 0.25 || (far_said && r.depth_beyond_far > 0.1);
           if (!r.volume_full.empty())
             std::fprintf(stderr, "\nscan: warning: frame %d: the volume is full: %s. Surfaces not yet in the model are "
                                  "no longer added; the model so far is kept and the scan goes on (raise "

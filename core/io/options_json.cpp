@@ -37,7 +37,8 @@ std::string ValueText(const std::filesystem::path& file, const Setting& s, const
       std::string t;
       for (std::size_t i = 0; i < v.size(); ++i) {
         if (!v[i].is_number_integer()) throw wrong("an array of whole numbers");
-        t += (i ? "," : "") + v[i].dump();
+        if (i) t += ',';
+        t += v[i].dump();
       }
       return t;
     }

@@ -169,6 +169,7 @@ json FrameReportToJson(const pipeline::FrameReport& r) {
              {"fused", r.fused},
              {"allocated_bricks", r.allocated_bricks},
              {"volume_full", r.volume_full},
+             {"depth_beyond_far", r.depth_beyond_far},
              {"exposure", {{"estimated_ratio", r.exposure_ratio}, {"samples", r.exposure_samples}}}};
   if (r.exposure_ratio_reported) fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
   return fr;
@@ -195,6 +196,7 @@ pipeline::FrameReport FrameReportFromJson(const fs::path& file, const json& j) {
     r.fused = j.at("fused").get<bool>();
     r.allocated_bricks = j.at("allocated_bricks").get<std::size_t>();
     r.volume_full = j.value("volume_full", "");
+    r.depth_beyond_far = j.value("depth_beyond_far", 0.0);
     const json& e = j.at("exposure");
     r.exposure_ratio = e.at("estimated_ratio").get<double>();
     r.exposure_samples = e.at("samples").get<long>();

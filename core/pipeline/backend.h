@@ -3,6 +3,7 @@
 // CUDA backend. A backend holds the frame's images and the model wherever it computes.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -78,6 +79,7 @@ class Backend {
   virtual std::size_t VolumeBytes() = 0;
   virtual bool VolumeFull() = 0;  // allocation stopped at the memory limit
   virtual std::string VolumeFullReason() = 0;  // why, naming the limit ("" while not full)
+  virtual std::array<Float3, 2> VolumeBounds() = 0;  // the allocated bricks' world box
   // 6. Ray casts the model from a pose (kept as the last rendering).
   virtual void Raycast(const Pose& T_world_camera) = 0;
   virtual bool HasRender() const = 0;

@@ -93,6 +93,7 @@ class CpuBackend final : public Backend {
   std::size_t VolumeBytes() override { return volume_.bytes(); }
   bool VolumeFull() override { return volume_.full(); }
   std::string VolumeFullReason() override { return volume_.full_reason(); }
+  std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
 
   void Raycast(const Pose& T) override {
     render_ = Render(T);

@@ -152,6 +152,7 @@ class CudaBackend final : public Backend {
   std::size_t VolumeBytes() override { return volume_.bytes(); }
   bool VolumeFull() override { return volume_.full(); }
   std::string VolumeFullReason() override { return volume_.full_reason(); }
+  std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
 
   void Raycast(const Pose& T) override {
     RaycastInto(render_, T);

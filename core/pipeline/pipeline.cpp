@@ -71,7 +71,8 @@ mesh::Mesh Pipeline::ExtractMesh(const std::function<bool(double)>& progress) {
   return backend_->ExtractMesh(progress);
 }
 VolumeStats Pipeline::volume_stats() const {
-  return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull(), backend_->VolumeFullReason()};
+  return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull(), backend_->VolumeFullReason(),
+          backend_->VolumeBounds()};
 }
 FrameViews Pipeline::DownloadViews() { return backend_->DownloadViews(); }
 
@@ -83,6 +84,16 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   FrameReport rep;
   rep.index = index_;
   rep.timestamp = in.timestamp;
+  {
+    long with_depth = 0, beyond = 0;
+    for (int y = 0; y < in.depth_m.height(); y += 4)
+      for (int x = 0; x < in.depth_m.width(); x += 4) {
+        const float z = in.depth_m(x, y);
+        with_depth += z > 0;
+        beyond += z > o_.volume.raycast_far_m;
+      }
+    rep.depth_beyond_far = with_depth > 0 ? double(beyond) / double(with_depth) : 0.0;
+  }
   Backend& b = *backend_;
   auto now = [&] {
     b.Synchronize();

@@ -3,6 +3,7 @@
 // its own thread), the benchmarks and the experiments.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -53,12 +54,17 @@ struct FrameReport {
   // memory the system or GPU had free). From then on surfaces not yet in the model are not
   // added; tracking and fusion into the bricks it has go on.
   std::string volume_full;
+  // Share of the frame's depth (every 4th pixel in each direction, of those with depth) that
+  // lies beyond volume.raycast_far_m: surfaces fused into the model but beyond the ray cast
+  // that tracking matches against and the model views show.
+  double depth_beyond_far = 0;
 };
 
 struct VolumeStats {
   std::size_t allocated_bricks = 0, bytes = 0;
   bool full = false;  // allocation stopped at the memory limit
   std::string full_reason;
+  std::array<Float3, 2> bounds{};  // world box of the allocated bricks (min, max; zeros when empty)
 };
 
 // Where a scan stopped, beside its model: what Pipeline::Resume needs to go on exactly as

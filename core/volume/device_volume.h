@@ -3,6 +3,7 @@
 // per-voxel functions of volume_impl.h (volume_cuda.cu). Built only with CUDA.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -37,6 +38,9 @@ class DeviceVolume {
   std::size_t bytes() const;
   bool full() const { return !full_reason_.empty(); }
   const std::string& full_reason() const { return full_reason_; }
+  // The world box of the allocated bricks (Volume::Bounds), kept on the host as bricks are
+  // added (the new bricks' coordinates are read back each frame: a few hundred bytes).
+  std::array<Float3, 2> Bounds() const;
   // Device views of the arrays for the per-element functions (V: the options' encoding).
   template <typename V>
   VolumeView<V> view() const {
@@ -73,6 +77,8 @@ class DeviceVolume {
   DeviceBuffer<std::uint8_t> pool_;  // 512 encoded voxels per brick
   DeviceBuffer<BrickCoord> coords_;
   int allocated_ = 0, capacity_ = 0, last_visible_ = 0;
+  std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of the allocated bricks
+  void Extend(const BrickCoord* coords, int n);  // host coordinates
   std::string full_reason_;
 };
 

@@ -200,6 +200,9 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
         InsertKey(gkeys, gvalues, mask, GroupKey(c.x, c.y, c.z), 1);
         todo[atomicAdd(counts + 2, 1)] = base + i;
       });
+      std::vector<BrickCoord> added(static_cast<std::size_t>(allowed));
+      cuda::CopyDeviceToHost(added.data(), coords_.data() + base, added.size() * sizeof(BrickCoord));
+      Extend(added.data(), allowed);
       allocated_ += allowed;
     }
   }
@@ -245,11 +248,33 @@ void DeviceVolume::Upload(const Volume& v) {
     cuda::CopyHostToDevice(pool_.data(), v.pool().data(), v.pool().size());
     cuda::CopyHostToDevice(coords_.data(), bc.data(), bc.size() * sizeof(BrickCoord));
   }
+  allocated_ = 0;
+  if (n > 0) {
+    std::vector<BrickCoord> all(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) all[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
+    Extend(all.data(), n);
+  }
   allocated_ = n;
   RebuildTables(keys_.size());
   full_reason_ = v.full_reason();
   mirror_.Assign(v.pool(), v.bricks(), v.full_reason());
   mirror_fresh_ = true;
+}
+
+void DeviceVolume::Extend(const BrickCoord* c, int n) {
+  for (int i = 0; i < n; ++i) {
+    const std::array<int, 3> p = {c[i].x, c[i].y, c[i].z};
+    for (std::size_t k = 0; k < 3; ++k) {
+      lo_[k] = allocated_ + i == 0 ? p[k] : std::min(lo_[k], p[k]);
+      hi_[k] = allocated_ + i == 0 ? p[k] : std::max(hi_[k], p[k]);
+    }
+  }
+}
+
+std::array<Float3, 2> DeviceVolume::Bounds() const {
+  if (allocated_ == 0) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
+  const float bs = options().voxel_m * kBrick;
+  return {Float3{lo_[0] * bs, lo_[1] * bs, lo_[2] * bs}, Float3{(hi_[0] + 1) * bs, (hi_[1] + 1) * bs, (hi_[2] + 1) * bs}};
 }
 
 }  // namespace hdrf::volume

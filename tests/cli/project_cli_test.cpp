@@ -108,6 +108,16 @@ TEST_F(ProjectCli, BudgetReachedIsSaidAndTheModelIsKeptAndExports) {
              " --formats ply --no-texture");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "e" / "mesh.ply"));
+  // A ray cast that reaches 1 m while the room is 1-4 m away: said once, with the share.
+  r = RunCli("scan synthetic:frames=10,size=160x120 --out " + (dir / "f").string() +
+             " --volume.raycast_far_m 1 --autosave 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string far = "of the depth lies beyond 1.0 m, past the model's ray cast";
+  const std::size_t at_far = r.output.find(far);
+  EXPECT_NE(at_far, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(far, at_far + 1), std::string::npos) << r.output;
+  const auto rep_far = nlohmann::json::parse(test::ReadText(dir / "f" / "report.json"));
+  EXPECT_GT(rep_far["frames_detail"][0]["depth_beyond_far"].get<double>(), 0.5);
 }
 
 pid_t Spawn(const std::string& command) {

@@ -245,6 +245,15 @@ TEST(GpuParity, HundredFrameScanTrajectoriesAgree) {
               1e3 * worst_t, 1e3 * worst_r, lost_c, lost_g, 100 * ate_c, 100 * ate_g);
   EXPECT_LE(worst_t, 1e-3);
   EXPECT_EQ(lost_c, lost_g);
+  // The allocated region (the studio draws it) agrees to within a brick.
+  const auto bc = cpu.volume_stats().bounds, bg = gpu.volume_stats().bounds;
+  const float brick = 8 * o.volume.voxel_m;
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(bc[k].x, bg[k].x, brick * 1.01f);
+    EXPECT_NEAR(bc[k].y, bg[k].y, brick * 1.01f);
+    EXPECT_NEAR(bc[k].z, bg[k].z, brick * 1.01f);
+  }
+  EXPECT_GT(bc[1].x - bc[0].x, 2.0f);
 }
 
 // A CUDA scan stopped after 30 frames (its model downloaded, its resume point taken) and

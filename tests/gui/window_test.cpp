@@ -264,6 +264,10 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000));
     ASSERT_TRUE(WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 60000));
     EXPECT_EQ(w.source_text().toStdString(), spec);
+    // The allocated region is drawn around the model (the room seen from its first frames).
+    const auto region = w.view3d()->region();
+    EXPECT_GT(region[1].x - region[0].x, 1.0f);
+    EXPECT_GT(region[1].z - region[0].z, 1.0f);
     EXPECT_TRUE(w.windowTitle().contains("room.hdrproj"));
     if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) w.grab().save(QString(shots) + "/studio_project.png");
     w.StartScan();
