@@ -727,6 +727,15 @@ void MainWindow::Render() {
                        .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
                        .arg(s->volume_budget_mb, 0, 'f', 0)
                        .arg(s->bricks));
+  if (s->gpu_budget_mb > 0 && s->device == "cuda")
+    memory_->setText(memory_->text() + "\n" +
+                     tr("GPU: %1 of %2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)")
+                         .arg(double(s->streaming.gpu_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
+                         .arg(s->gpu_budget_mb, 0, 'f', 0)
+                         .arg(s->streaming.gpu_bricks)
+                         .arg(s->streaming.host_bricks)
+                         .arg(s->streaming.swapped_out)
+                         .arg(s->streaming.swapped_in));
   if (!s->volume_full.empty()) {
     memory_->setText(memory_->text() + "\n" +
                      tr("VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and "

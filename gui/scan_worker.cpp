@@ -156,7 +156,7 @@ void ScanWorker::OpenProject(const QString& path) {
         source_.reset();
         live_ = nullptr;
         msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");
-      } else if (source_->size() >= 0 && source_->description() == p.source) {
+      } else if (source_->size() >= 0 && io::SameSource(p, source_spec_, source_->description())) {
         msg += source_->Skip(p.resume.frames) ? tr(" — Start continues after frame %1").arg(p.resume.frames)
                                               : tr(" — its source has no frames left");
       } else {
@@ -211,6 +211,8 @@ void ScanWorker::FillScanState(Snapshot& s) const {
   s.volume_bounds = vs.bounds;
   s.raycast_far_m = pipe.options().volume.raycast_far_m;
   s.volume_budget_mb = pipe.options().volume.max_memory_mb;
+  s.gpu_budget_mb = pipe.options().volume.gpu_memory_mb;
+  s.streaming = vs.streaming;
   s.bricks = vs.allocated_bricks;
   s.frames_total = source_ ? source_->size() : -1;
   s.device = DeviceName(pipe.device());

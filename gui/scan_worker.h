@@ -77,6 +77,8 @@ struct Snapshot {
   std::shared_ptr<const mesh::Mesh> mesh;  // latest extracted mesh (may be older than the frame)
   std::size_t volume_bytes = 0, bricks = 0;
   double volume_budget_mb = 0;       // volume.max_memory_mb
+  double gpu_budget_mb = 0;          // volume.gpu_memory_mb (0: none)
+  pipeline::StreamingStats streaming;  // bricks on the GPU and in host memory
   std::string volume_full;           // why the volume stopped growing ("" while it grows)
   std::array<Float3, 2> volume_bounds{};  // the allocated region (world box)
   double raycast_far_m = 0;          // the ray cast's reach (volume.raycast_far_m)

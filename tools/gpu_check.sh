@@ -19,8 +19,14 @@ mkdir -p "$out"
 } | tee "$out/gpu_env.txt"
 
 cmake --preset core-gpu -DHDRF_SHARED_DATA_DIR=/nonexistent 2>&1 | tail -n 3
-cmake --build --preset core-gpu -j "$(nproc)" 2>&1 | tee "$out/build.txt" | grep -iE "error|warning" || true
 set +e
+cmake --build --preset core-gpu -j "$(nproc)" > "$out/build.txt" 2>&1
+built=$?
+grep -iE "error|warning" "$out/build.txt"
+if [ "$built" -ne 0 ]; then
+  echo "gpu_check: the build failed (rc=$built); see build.txt" >&2
+  exit 2
+fi
 all=0
 if [ "${HDRF_GPU_ALL:-1}" = 1 ]; then  # the CPU tests too (about 10 minutes); 0 runs the gpu ones only
   ctest --preset core-gpu -j 4 -LE gpu 2>&1 | tee "$out/ctest_all.txt" | tail -n 15

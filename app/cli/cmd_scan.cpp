@@ -138,6 +138,7 @@ Command AddScanCommand(CLI::App& app) {
         break;
       }
     std::unique_ptr<pipeline::ScanSession> owned;
+    const bool same_source = project && io::SameSource(*project, a->source, source->description());
     if (project) {
       const PinholeCamera& pc = project->sensor.camera;
       const PinholeCamera& sc = source->sensor().camera;
@@ -150,7 +151,7 @@ Command AddScanCommand(CLI::App& app) {
                                         "): a scan goes on with the camera it began with");
       owned = io::ResumeSession(*project, [&](pipeline::PipelineOptions& po) { po = o; });
       // The same bounded source goes on where the scan stopped.
-      if (source->description() == project->source && source->size() >= 0) {
+      if (same_source && source->size() >= 0) {
         if (!source->Skip(project->resume.frames))
           throw InputError(a->resume, "holds " + std::to_string(project->resume.frames) + " frames, more than " +
                                           source->description() + " has: nothing left to scan");
@@ -166,8 +167,10 @@ Command AddScanCommand(CLI::App& app) {
     pipeline::ScanSession& session = *owned;
     pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
-    const int left = source->size() < 0 ? -1 : source->size() - (project && source->description() == project->source
-                                                                     ? project->resume.frames : 0);
+    if (o.volume.gpu_memory_mb > 0 && pipe.device() != Device::kCuda)
+      std::fprintf(stderr, "scan: note: volume.gpu_memory_mb applies on the GPU; on the CPU the whole model stays in "
+                           "host memory (volume.max_memory_mb)\n");
+    const int left = source->size() < 0 ? -1 : source->size() - (same_source ? project->resume.frames : 0);
     const int total = a->max_frames > 0 ? (left < 0 ? a->max_frames : std::min(a->max_frames, left)) : left;
     if (total < 0)
       throw SettingError("SOURCE", "a live source runs until stopped: give frames=N in its spec or --frames N");
@@ -176,7 +179,7 @@ Command AddScanCommand(CLI::App& app) {
                  1000 * o.volume.voxel_m,
                  pipe.device() == Device::kCuda ? ("GPU: " + CudaDeviceDescription()).c_str() : "CPU");
     const std::string source_text = project ? project->source : source->description();
-    const std::string source_spec = project && source->description() == project->source ? project->source_spec : a->source;
+    const std::string source_spec = same_source && !project->source_spec.empty() ? project->source_spec : a->source;
     // Autosaves go to a recovery file named after the project and the start time.
     const fs::path recovery = [&] {
       char stamp[32];
@@ -278,7 +281,10 @@ Command AddScanCommand(CLI::App& app) {
                                 {"raycast", mean.raycast}, {"total", mean.total()}}},
                    {"fps", session.frames_per_second()},
                    {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full},
-                               {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m}}},
+                               {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m},
+                               {"gpu_bricks", vs.streaming.gpu_bricks}, {"host_bricks", vs.streaming.host_bricks},
+                               {"gpu_bytes", vs.streaming.gpu_bytes}, {"swapped_out", vs.streaming.swapped_out},
+                               {"swapped_in", vs.streaming.swapped_in}}},
                    {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
                    {"project", save.string()},
                    {"frames_detail", frames}};

@@ -384,6 +384,13 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& p,
   return s;
 }
 
+bool SameSource(const Project& p, const std::string& spec, const std::string& description) {
+  if (p.source_spec.empty()) return p.source == description;
+  std::error_code ec;
+  if (fs::exists(p.source_spec, ec) && fs::exists(spec, ec)) return fs::equivalent(p.source_spec, spec, ec);
+  return p.source_spec == spec;
+}
+
 fs::path RecoveryFolder() {
   if (const char* x = std::getenv("XDG_STATE_HOME"); x && *x) return fs::path(x) / "hdrfusion" / "recovery";
   if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".local" / "state" / "hdrfusion" / "recovery";

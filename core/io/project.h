@@ -60,6 +60,12 @@ Project LoadProject(const std::filesystem::path& file);
 std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& project,
                                                      const std::function<void(pipeline::PipelineOptions&)>& overrides = {});
 
+// Whether a source opened from `spec` (as described by `description`) is the one the project
+// was scanned from, so that resuming goes on after its frames: the same folder or file
+// (however the path is written), or the same synthetic or camera spec; projects that did not
+// record their spec compare descriptions.
+bool SameSource(const Project& project, const std::string& spec, const std::string& description);
+
 // Recovery files: where autosaves of unfinished scans go (XDG state home,
 // $XDG_STATE_HOME/hdrfusion/recovery, else ~/.local/state/hdrfusion/recovery), and the ones
 // a crash left there, newest first.

@@ -21,6 +21,13 @@
 
 namespace hdrf::pipeline {
 
+// Where the model's bricks are, with a GPU budget (volume.gpu_memory_mb): on the GPU, or
+// moved to host memory, and how many moved each way so far (zeros on the CPU).
+struct StreamingStats {
+  std::size_t gpu_bricks = 0, host_bricks = 0, gpu_bytes = 0;
+  long swapped_out = 0, swapped_in = 0;
+};
+
 struct BackendSetup {
   const PipelineOptions& options;  // copied by the backend
   PinholeCamera camera;
@@ -80,6 +87,7 @@ class Backend {
   virtual bool VolumeFull() = 0;  // allocation stopped at the memory limit
   virtual std::string VolumeFullReason() = 0;  // why, naming the limit ("" while not full)
   virtual std::array<Float3, 2> VolumeBounds() = 0;  // the allocated bricks' world box
+  virtual StreamingStats Streaming() { return {}; }
   // 6. Ray casts the model from a pose (kept as the last rendering).
   virtual void Raycast(const Pose& T_world_camera) = 0;
   virtual bool HasRender() const = 0;

@@ -153,6 +153,9 @@ class CudaBackend final : public Backend {
   bool VolumeFull() override { return volume_.full(); }
   std::string VolumeFullReason() override { return volume_.full_reason(); }
   std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
+  StreamingStats Streaming() override {
+    return {volume_.gpu_bricks(), volume_.host_bricks(), volume_.gpu_bytes(), volume_.swapped_out(), volume_.swapped_in()};
+  }
 
   void Raycast(const Pose& T) override {
     RaycastInto(render_, T);
@@ -196,7 +199,8 @@ class CudaBackend final : public Backend {
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
     // On the GPU the extraction takes milliseconds: progress at its start and end only.
     if (progress && !progress(0.0)) throw Cancelled();
-    mesh::Mesh m = mesh::ExtractMeshOnGpu(volume_);
+    // Part of the model in host memory (a GPU budget): the whole model is meshed on the CPU.
+    mesh::Mesh m = volume_.host_bricks() > 0 ? mesh::ExtractMesh(volume_.Download()) : mesh::ExtractMeshOnGpu(volume_);
     if (progress && !progress(1.0)) throw Cancelled();
     return m;
   }

@@ -72,7 +72,7 @@ mesh::Mesh Pipeline::ExtractMesh(const std::function<bool(double)>& progress) {
 }
 VolumeStats Pipeline::volume_stats() const {
   return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull(), backend_->VolumeFullReason(),
-          backend_->VolumeBounds()};
+          backend_->VolumeBounds(), backend_->Streaming()};
 }
 FrameViews Pipeline::DownloadViews() { return backend_->DownloadViews(); }
 

@@ -65,6 +65,7 @@ struct VolumeStats {
   bool full = false;  // allocation stopped at the memory limit
   std::string full_reason;
   std::array<Float3, 2> bounds{};  // world box of the allocated bricks (min, max; zeros when empty)
+  StreamingStats streaming;        // with a GPU budget: bricks on the GPU and in host memory
 };
 
 // Where a scan stopped, beside its model: what Pipeline::Resume needs to go on exactly as

@@ -175,8 +175,12 @@ std::vector<Setting> MakeSettings() {
                  "Radiance is fused only where the angle between normal and view ray is below this",
                  HDRF_FIELD(volume.tau1_deg)),
             "--tau1"));
-  v.push_back(Real("volume.max_memory_mb", 1, 1 << 24, "MiB", "Voxel memory the volume may use",
+  v.push_back(Real("volume.max_memory_mb", 1, 1 << 24, "MiB", "Voxel memory the whole model may use",
                    HDRF_FIELD(volume.max_memory_mb)));
+  v.push_back(Real("volume.gpu_memory_mb", 0, 1 << 24, "MiB",
+                   "GPU only: voxel memory on the GPU; beyond it, bricks out of view move to host memory and back "
+                   "when seen again (0: no GPU budget; 4 MiB at least)",
+                   HDRF_FIELD(volume.gpu_memory_mb)));
   v.push_back(Expert(Real("volume.raycast_near_m", 1e-3, 100, "m",
                           "Ray casting starts this far from the camera",
                           HDRF_FIELD(volume.raycast_near_m))));

@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "common/device_buffer.h"
 #include "common/se3.h"
@@ -33,7 +35,13 @@ class DeviceVolume {
   void Raycast(const RaycastArgs& a, const RenderingViews& out) const;
 
   const VolumeOptions& options() const { return mirror_.options(); }
-  std::size_t allocated_bricks() const { return std::size_t(allocated_); }
+  // Bricks in the model: on the GPU and, with a GPU budget, moved to host memory.
+  std::size_t allocated_bricks() const { return std::size_t(allocated_) + host_.size(); }
+  std::size_t gpu_bricks() const { return std::size_t(allocated_); }
+  std::size_t host_bricks() const { return host_.size(); }
+  long swapped_out() const { return swapped_out_; }  // bricks moved to host memory so far
+  long swapped_in() const { return swapped_in_; }    // ... and back
+  std::size_t gpu_bytes() const;
   std::size_t last_visible_bricks() const { return std::size_t(last_visible_); }
   std::size_t bytes() const;
   bool full() const { return !full_reason_.empty(); }
@@ -53,7 +61,8 @@ class DeviceVolume {
     return v;
   }
   const BrickCoord* brick_coords() const { return coords_.data(); }
-  // A host copy of the whole model (every allocated brick), refreshed after new frames.
+  // A host copy of the whole model (every allocated brick, on the GPU or moved to host
+  // memory), refreshed after new frames.
   const Volume& Download();
   // Replaces the model with a host one (a project reopened).
   void Upload(const Volume& v);
@@ -63,6 +72,10 @@ class DeviceVolume {
   // memory free) and hash tables at most half full for them.
   bool Reserve(int bricks);
   void RebuildTables(std::size_t capacity);
+  // With a GPU budget: the `count` bricks seen longest ago (none seen this frame) move to
+  // host memory and the pool is compacted.
+  void SwapOut(int count);
+  int SplitVisible(int* n);  // step 2 of Integrate: counts of visible, new, to-do
 
   Volume mirror_;  // options and limits; the host copy on request
   bool mirror_fresh_ = true;
@@ -78,6 +91,10 @@ class DeviceVolume {
   DeviceBuffer<BrickCoord> coords_;
   int allocated_ = 0, capacity_ = 0, last_visible_ = 0;
   std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of the allocated bricks
+  std::unordered_map<std::uint64_t, std::vector<std::uint8_t>> host_;  // bricks moved out: key -> voxels
+  std::vector<int> last_seen_;  // per slot: the frame that last updated it
+  int frame_ = 0;
+  long swapped_out_ = 0, swapped_in_ = 0;
   void Extend(const BrickCoord* coords, int n);  // host coordinates
   std::string full_reason_;
 };

@@ -41,12 +41,20 @@ void VolumeOptions::Check() const {
     throw SettingError("volume.raycast_far_m", "ray casting needs 0 < near < far (finite metres)");
   if (!(max_memory_mb >= 1 && max_memory_mb <= double(1 << 24)))
     throw SettingError("volume.max_memory_mb", "must be between 1 MiB and 16 TiB");
+  if (!(gpu_memory_mb == 0 || (gpu_memory_mb >= 4 && gpu_memory_mb <= double(1 << 24))))
+    throw SettingError("volume.gpu_memory_mb", "must be 0 (no GPU budget) or between 4 MiB and 16 TiB");
 }
 
 std::size_t VolumeOptions::max_bricks() const {
   // A brick also costs its entries in the two hash tables (at most half full: 4 slots of 12 bytes).
   const double per_brick = double(brick_bytes()) + 48.0;
   return std::size_t(std::min(max_memory_mb * 1024 * 1024 / per_brick, double(1 << 30)));
+}
+
+std::size_t VolumeOptions::gpu_bricks() const {
+  if (gpu_memory_mb <= 0) return 0;
+  const double per_brick = double(brick_bytes()) + 48.0;
+  return std::size_t(std::min(gpu_memory_mb * 1024 * 1024 / per_brick, double(1 << 30)));
 }
 
 void BrickTable::Reset(std::size_t capacity) {

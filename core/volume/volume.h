@@ -28,7 +28,11 @@ struct VolumeOptions {
   float max_radiance_weight = 64;  // cap of the radiance weight
   float tau0 = 0.1f;             // radiance fused only where the largest channel PCF > tau0
   float tau1_deg = 75;           // ... and the angle between normal and view ray < tau1
-  double max_memory_mb = 4096;   // voxel memory the volume may use
+  double max_memory_mb = 4096;   // voxel memory the volume may use (the whole model)
+  // GPU only: bricks the GPU holds at most (MiB; 0: as many as max_memory_mb and the GPU's
+  // free memory allow). Beyond it, bricks out of view move to host memory and come back
+  // when seen again (DeviceVolume).
+  double gpu_memory_mb = 0;
   float raycast_near_m = 0.2f;   // ray casting starts this far from the camera ...
   float raycast_far_m = 8.0f;    // ... and gives up this far
   // Voxel storage (volume_impl.h, volume.voxel): compact by default, as accurate as full on the
@@ -39,6 +43,7 @@ struct VolumeOptions {
   // Bytes of one brick's voxels, and the most bricks max_memory_mb holds.
   std::size_t brick_bytes() const { return 512 * std::size_t(EncodingBytes(encoding)); }
   std::size_t max_bricks() const;
+  std::size_t gpu_bricks() const;  // bricks gpu_memory_mb holds (0: no GPU budget)
 };
 
 // An open-addressing hash table in host memory (the layout HashView reads): brick or group

@@ -64,6 +64,30 @@ void InsertAll(std::uint64_t* keys, int* values, std::uint64_t* gkeys, int* gval
   });
 }
 
+// Visible keys the table has go to the to-do list (their slots), the others to `fresh`.
+void SplitKeys(HashView table, const std::uint64_t* visible, int n_visible, int* counts, std::uint64_t* fresh, int* todo) {
+  par::ForEach(par::Gpu{}, std::max(n_visible, 1), [=] __device__(int i) {
+    if (i >= counts[0]) return;
+    const std::uint64_t k = visible[i];
+    const int slot = table.Find(k);
+    if (slot >= 0) todo[atomicAdd(counts + 2, 1)] = slot;
+    else fresh[atomicAdd(counts + 1, 1)] = k;
+  });
+}
+
+// Bricks keep[0..kept) of a pool (words per brick: `words`) into slots 0..kept of another.
+void GatherBricks(const std::uint32_t* src, std::uint32_t* dst, const int* keep, long words, int kept,
+                  const BrickCoord* old_c, BrickCoord* new_c) {
+  par::ForEach(par::Gpu{}, kept, [=] __device__(int j) { new_c[j] = old_c[keep[j]]; });
+  for (long first = 0; first < long(kept) * words; first += long(1) << 30) {
+    const long n = std::min(long(kept) * words - first, long(1) << 30);
+    par::ForEach(par::Gpu{}, int(n), [=] __device__(int i) {
+      const long w = first + i;
+      dst[w] = src[long(keep[w / words]) * words + w % words];
+    });
+  }
+}
+
 std::size_t PowerOfTwoAtLeast(std::size_t n) {
   std::size_t c = 1024;
   while (c < n) c *= 2;
@@ -80,8 +104,9 @@ DeviceVolume::DeviceVolume(const VolumeOptions& o) : mirror_(o), vbytes_(Encodin
 }
 
 std::size_t DeviceVolume::bytes() const {
-  return (keys_.size() + group_keys_.size()) * (sizeof(std::uint64_t) + sizeof(int)) +
-         std::size_t(capacity_) * 512 * std::size_t(vbytes_);
+  std::size_t host = 0;
+  for (const auto& b : host_) host += b.second.size() + sizeof(std::uint64_t);
+  return gpu_bytes() + host;
 }
 
 void DeviceVolume::RebuildTables(std::size_t capacity) {
@@ -99,7 +124,8 @@ void DeviceVolume::RebuildTables(std::size_t capacity) {
 bool DeviceVolume::Reserve(int want) {
   if (2 * std::size_t(want) + 2 > keys_.size()) RebuildTables(PowerOfTwoAtLeast(4 * std::size_t(want)));
   if (want <= capacity_) return true;
-  const int max_bricks = int(mirror_.max_bricks());
+  const int gpu_budget = int(options().gpu_bricks());
+  const int max_bricks = gpu_budget > 0 ? std::min(gpu_budget, int(mirror_.max_bricks())) : int(mirror_.max_bricks());
   const int cap = std::min(max_bricks, std::max(want, capacity_ + capacity_ / 2));
   std::size_t free_b = 0, total_b = 0;
   HDRF_CUDA_CHECK(cudaMemGetInfo(&free_b, &total_b));
@@ -158,31 +184,44 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
       if (InsertKey(set, nullptr, set_mask, k, 0)) visible[atomicAdd(counts, 1)] = k;
     });
   });
-  // 2. Split into bricks the model has (straight to the to-do list) and new ones.
-  {
-    const HashView table{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)};
-    std::uint64_t* fresh = fresh_.data();
-    int* todo = todo_.data();
-    par::ForEach(par::Gpu{}, int(most), [=] __device__(int i) {
-      if (i >= counts[0]) return;
-      const std::uint64_t k = visible[i];
-      const int slot = table.Find(k);
-      if (slot >= 0) todo[atomicAdd(counts + 2, 1)] = slot;
-      else fresh[atomicAdd(counts + 1, 1)] = k;
-    });
-  }
+  // 2. Split into bricks the model has (straight to the to-do list) and new ones. With a GPU
+  // budget that the new ones would pass, the bricks seen longest ago move to host memory
+  // first (never one seen in this frame), and the split is made again on the compacted pool.
   int n[3];
-  HDRF_CUDA_CHECK(cudaMemcpy(n, counts_.data(), sizeof n, cudaMemcpyDeviceToHost));
+  SplitVisible(n);
+  ++frame_;
+  const int gpu_budget = int(options().gpu_bricks());
+  if (gpu_budget > 0) {
+    last_seen_.resize(std::size_t(allocated_), 0);
+    std::vector<int> seen(static_cast<std::size_t>(n[2]));
+    if (n[2] > 0) cuda::CopyDeviceToHost(seen.data(), todo_.data(), seen.size() * sizeof(int));
+    for (int s : seen) last_seen_[std::size_t(s)] = frame_;
+    if (allocated_ + n[1] > gpu_budget) {
+      const int room = gpu_budget - gpu_budget / 8;  // slack: bricks move out in batches
+      const int out = std::min(allocated_ + n[1] - room, allocated_ - n[2]);
+      if (out > 0) {
+        SwapOut(out);
+        SplitVisible(n);
+      }
+    }
+  }
   // 3. New bricks take the next slots in key order (as on the CPU), up to the limits.
   const int wanted = n[1];
   int allowed = 0;
   if (wanted > 0 && full_reason_.empty()) {
     std::size_t bytes = temp_.size();
     HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(temp_.data(), bytes, fresh_.data(), fresh_sorted_.data(), wanted));
-    allowed = std::min<int>(wanted, int(mirror_.max_bricks()) - allocated_);
+    allowed = std::min<int>(wanted, int(mirror_.max_bricks()) - int(allocated_bricks()));
     if (allowed < wanted)
       full_reason_ = "the model reached its memory budget of " + std::to_string(long(options().max_memory_mb)) +
                      " MiB (volume.max_memory_mb): " + std::to_string(mirror_.max_bricks()) + " bricks";
+    if (gpu_budget > 0 && allocated_ + allowed > gpu_budget) {
+      allowed = std::max(0, gpu_budget - allocated_);
+      if (full_reason_.empty())
+        full_reason_ = "one view needs more bricks than the GPU budget of " +
+                       std::to_string(long(options().gpu_memory_mb)) + " MiB holds (volume.gpu_memory_mb: " +
+                       std::to_string(gpu_budget) + " bricks)";
+    }
     if (allowed > 0 && !Reserve(allocated_ + allowed)) allowed = std::max(0, capacity_ - allocated_);
     if (allowed > 0) {
       const std::uint64_t* sorted = fresh_sorted_.data();
@@ -203,7 +242,21 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
       std::vector<BrickCoord> added(static_cast<std::size_t>(allowed));
       cuda::CopyDeviceToHost(added.data(), coords_.data() + base, added.size() * sizeof(BrickCoord));
       Extend(added.data(), allowed);
+      // Bricks that had moved to host memory come back into their new slots.
+      if (!host_.empty()) {
+        std::vector<std::uint64_t> keys(static_cast<std::size_t>(allowed));
+        cuda::CopyDeviceToHost(keys.data(), fresh_sorted_.data(), keys.size() * sizeof(std::uint64_t));
+        const std::size_t B = 512 * std::size_t(vbytes_);
+        for (int i = 0; i < allowed; ++i) {
+          const auto it = host_.find(keys[std::size_t(i)]);
+          if (it == host_.end()) continue;
+          cuda::CopyHostToDevice(pool_.data() + std::size_t(base + i) * B, it->second.data(), B);
+          host_.erase(it);
+          ++swapped_in_;
+        }
+      }
       allocated_ += allowed;
+      if (gpu_budget > 0) last_seen_.resize(std::size_t(allocated_), frame_);
     }
   }
   last_visible_ = n[2] + allowed;
@@ -213,6 +266,70 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
                                    counts_.data());
   });
   mirror_fresh_ = false;
+}
+
+int DeviceVolume::SplitVisible(int* n) {
+  HDRF_CUDA_CHECK(cudaMemset(counts_.data() + 1, 0, 2 * sizeof(int)));
+  int visible_count = 0;
+  HDRF_CUDA_CHECK(cudaMemcpy(&visible_count, counts_.data(), sizeof(int), cudaMemcpyDeviceToHost));
+  SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(), visible_count,
+            counts_.data(), fresh_.data(), todo_.data());
+  HDRF_CUDA_CHECK(cudaMemcpy(n, counts_.data(), 3 * sizeof(int), cudaMemcpyDeviceToHost));
+  return n[0];
+}
+
+void DeviceVolume::SwapOut(int count) {
+  // The bricks seen longest ago, none of this frame's.
+  std::vector<int> order;
+  for (int s = 0; s < allocated_; ++s)
+    if (last_seen_[std::size_t(s)] < frame_) order.push_back(s);
+  count = std::min<int>(count, int(order.size()));
+  if (count <= 0) return;
+  std::nth_element(order.begin(), order.begin() + (count - 1), order.end(), [&](int a, int b) {
+    return last_seen_[std::size_t(a)] != last_seen_[std::size_t(b)] ? last_seen_[std::size_t(a)] < last_seen_[std::size_t(b)]
+                                                                     : a < b;
+  });
+  std::vector<char> out(static_cast<std::size_t>(allocated_), 0);
+  for (int i = 0; i < count; ++i) out[std::size_t(order[std::size_t(i)])] = 1;
+  std::vector<BrickCoord> coords(static_cast<std::size_t>(allocated_));
+  cuda::CopyDeviceToHost(coords.data(), coords_.data(), coords.size() * sizeof(BrickCoord));
+  const std::size_t B = 512 * std::size_t(vbytes_);
+  std::vector<int> keep;
+  std::vector<int> seen;
+  for (int s = 0; s < allocated_; ++s) {
+    if (out[std::size_t(s)]) {
+      std::vector<std::uint8_t> voxels(B);
+      cuda::CopyDeviceToHost(voxels.data(), pool_.data() + std::size_t(s) * B, B);
+      const BrickCoord& c = coords[std::size_t(s)];
+      host_[BrickKey(c.x, c.y, c.z)] = std::move(voxels);
+    } else {
+      keep.push_back(s);
+      seen.push_back(last_seen_[std::size_t(s)]);
+    }
+  }
+  // The kept bricks, in slot order, into a fresh pool; the rest of it default voxels.
+  DeviceBuffer<int> keep_d{std::max<std::size_t>(keep.size(), 1)};
+  if (!keep.empty()) cuda::CopyHostToDevice(keep_d.data(), keep.data(), keep.size() * sizeof(int));
+  DeviceBuffer<std::uint8_t> pool{std::size_t(capacity_) * B};
+  DeviceBuffer<BrickCoord> moved{std::size_t(capacity_)};
+  const int kept = int(keep.size());
+  GatherBricks(reinterpret_cast<const std::uint32_t*>(pool_.data()), reinterpret_cast<std::uint32_t*>(pool.data()),
+               keep_d.data(), long(B / 4), kept, coords_.data(), moved.data());
+  pool_ = std::move(pool);
+  coords_ = std::move(moved);
+  VisitEncoding(options().encoding, [&](auto tag) {
+    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(kept) * 512, long(capacity_ - kept) * 512);
+  });
+  last_seen_ = std::move(seen);
+  swapped_out_ += count;
+  allocated_ = kept;
+  RebuildTables(keys_.size());
+  mirror_fresh_ = false;
+}
+
+std::size_t DeviceVolume::gpu_bytes() const {
+  return (keys_.size() + group_keys_.size()) * (sizeof(std::uint64_t) + sizeof(int)) +
+         std::size_t(capacity_) * 512 * std::size_t(vbytes_);
 }
 
 void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out) const {
@@ -229,6 +346,19 @@ const Volume& DeviceVolume::Download() {
   }
   std::vector<std::array<int, 3>> coords(bc.size());
   for (std::size_t i = 0; i < bc.size(); ++i) coords[i] = {bc[i].x, bc[i].y, bc[i].z};
+  // Bricks in host memory follow, in key order.
+  if (!host_.empty()) {
+    std::vector<std::uint64_t> keys;
+    for (const auto& h : host_) keys.push_back(h.first);
+    std::sort(keys.begin(), keys.end());
+    for (const std::uint64_t k : keys) {
+      const std::vector<std::uint8_t>& v = host_.at(k);
+      pool.insert(pool.end(), v.begin(), v.end());
+      std::array<int, 3> c;
+      DecodeBrickKey(k, &c[0], &c[1], &c[2]);
+      coords.push_back(c);
+    }
+  }
   mirror_.Assign(std::move(pool), std::move(coords), full_reason_);
   mirror_fresh_ = true;
   return mirror_;
@@ -236,29 +366,38 @@ const Volume& DeviceVolume::Download() {
 
 void DeviceVolume::Upload(const Volume& v) {
   const int n = int(v.allocated_bricks());
+  // With a GPU budget the model may not fit: the bricks allocated last (nearest the end of
+  // the scan, where it goes on) go to the GPU, the earlier ones to host memory.
+  const int gpu_budget = int(options().gpu_bricks());
+  const int first = gpu_budget > 0 && n > gpu_budget ? n - (gpu_budget - gpu_budget / 8) : 0;
+  const int on_gpu = n - first;
+  const std::size_t B = 512 * std::size_t(vbytes_);
   allocated_ = 0;
+  host_.clear();
+  swapped_out_ = swapped_in_ = 0;
   full_reason_.clear();
-  if (!Reserve(std::max(n, 1024))) throw Error("the GPU has too little memory free for the model: " + full_reason_);
+  if (!Reserve(std::max(on_gpu, 1024))) throw Error("the GPU has too little memory free for the model: " + full_reason_);
   VisitEncoding(options().encoding, [&](auto tag) {
-    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(n) * 512, long(capacity_ - n) * 512);
+    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(on_gpu) * 512, long(capacity_ - on_gpu) * 512);
   });
-  if (n > 0) {
-    std::vector<BrickCoord> bc(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) bc[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
-    cuda::CopyHostToDevice(pool_.data(), v.pool().data(), v.pool().size());
-    cuda::CopyHostToDevice(coords_.data(), bc.data(), bc.size() * sizeof(BrickCoord));
+  std::vector<BrickCoord> all(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) all[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
+  for (int i = 0; i < first; ++i) {
+    const std::uint8_t* src = v.pool().data() + std::size_t(i) * B;
+    host_[BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z)] = std::vector<std::uint8_t>(src, src + B);
   }
-  allocated_ = 0;
-  if (n > 0) {
-    std::vector<BrickCoord> all(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) all[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
-    Extend(all.data(), n);
+  if (on_gpu > 0) {
+    cuda::CopyHostToDevice(pool_.data(), v.pool().data() + std::size_t(first) * B, std::size_t(on_gpu) * B);
+    cuda::CopyHostToDevice(coords_.data(), all.data() + first, std::size_t(on_gpu) * sizeof(BrickCoord));
   }
-  allocated_ = n;
+  if (n > 0) Extend(all.data(), n);
+  allocated_ = on_gpu;
+  frame_ = 0;
+  last_seen_.assign(std::size_t(on_gpu), 0);
   RebuildTables(keys_.size());
   full_reason_ = v.full_reason();
   mirror_.Assign(v.pool(), v.bricks(), v.full_reason());
-  mirror_fresh_ = true;
+  mirror_fresh_ = first == 0;  // else the mirror's slot order is the download's, not the file's
 }
 
 void DeviceVolume::Extend(const BrickCoord* c, int n) {

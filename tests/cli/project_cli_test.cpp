@@ -49,7 +49,8 @@ TEST_F(ProjectCli, SaveResumeExportAndEval) {
   const std::string half = (dir / "half.hdrproj").string();
   r = RunCli("scan " + seq + " --out " + (dir / "a").string() + " --frames 30 --save " + half);
   ASSERT_EQ(r.status, 0) << r.output;
-  r = RunCli("scan --resume " + half + " " + seq + " --out " + (dir / "b").string());
+  // The same folder, its path written another way: it goes on after the frames scanned.
+  r = RunCli("scan --resume " + half + " " + (dir / "." / "seq").string() + "/ --out " + (dir / "b").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("after its 30 frames"), std::string::npos) << r.output;
   const auto whole = io::ReadTrajectory(dir / "whole" / "trajectory.txt");

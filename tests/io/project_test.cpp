@@ -146,6 +146,9 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   test::WriteText(dir / "other.hdrproj", "ply\nformat ascii 1.0\n");
   test::ExpectErrorContaining([&] { io::LoadProject(dir / "other.hdrproj"); }, {"other.hdrproj", "not an HDRFusion project"});
   test::ExpectErrorContaining([&] { io::LoadProject(dir / "none.hdrproj"); }, {"none.hdrproj", "does not exist"});
+  // The source it came from: the same spec; another auto exposure is another source.
+  EXPECT_TRUE(io::SameSource(p, "synthetic:frames=4", "anything"));
+  EXPECT_FALSE(io::SameSource(p, "synthetic:frames=4,ae=smooth", "anything"));
   // Resuming with settings that change the model is refused, saying why.
   test::ExpectErrorContaining(
       [&] { io::ResumeSession(p, [](pipeline::PipelineOptions& o) { o.volume.voxel_m = 0.01f; }); },

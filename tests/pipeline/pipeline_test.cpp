@@ -33,6 +33,14 @@ TEST(PipelineOptions, ImpossibleVolumesAreRefusedByName) {
   o = {};
   o.max_memory_mb = 1e308;
   test::ExpectErrorContaining([&] { o.Check(); }, {"volume.max_memory_mb"});
+  o = {};
+  o.gpu_memory_mb = 2;  // too small for any view's bricks
+  test::ExpectErrorContaining([&] { o.Check(); }, {"volume.gpu_memory_mb", "4 MiB"});
+  o.gpu_memory_mb = 0;  // no GPU budget
+  o.Check();
+  EXPECT_EQ(o.gpu_bricks(), 0u);
+  o.gpu_memory_mb = 8;
+  EXPECT_EQ(o.gpu_bricks(), std::size_t(8.0 * (1 << 20) / (double(o.brick_bytes()) + 48)));
   pipeline::PipelineOptions po;
   po.pcf = 7;
   test::ExpectErrorContaining([&] { po.Check(); }, {"'pcf'"});
