@@ -2,9 +2,7 @@
 
 #include <QDateTime>
 #include <QTimer>
-#include <ctime>
 #include <filesystem>
-#include <unistd.h>
 #include <cmath>
 #include <limits>
 
@@ -41,21 +39,6 @@ ScanWorker::~ScanWorker() {
 
 namespace {
 
-// A recovery file for a new session: named after the studio, the time and the process.
-std::filesystem::path NewRecoveryFile() {
-  char stamp[32];
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  std::strftime(stamp, sizeof stamp, "studio-%Y%m%d-%H%M%S", &tm);
-  return io::RecoveryFolder() / (std::string(stamp) + "-" + std::to_string(getpid()) + io::kProjectExtension);
-}
-
-bool SameCamera(const PinholeCamera& a, const PinholeCamera& b) {
-  return a.width == b.width && a.height == b.height && std::abs(a.fx - b.fx) < 1e-3f && std::abs(a.fy - b.fy) < 1e-3f &&
-         std::abs(a.cx - b.cx) < 1e-3f && std::abs(a.cy - b.cy) < 1e-3f;
-}
-
 QString Describe(const sensors::DeviceEntry& e) {
   return e.serial.empty() ? QString::fromStdString(e.name)
                           : QStringLiteral("%1 (%2)").arg(QString::fromStdString(e.serial), QString::fromStdString(e.name));
@@ -89,7 +72,7 @@ void ScanWorker::Open() {
   session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
   // The previous model was dropped on purpose: so is its recovery file.
   DropRecovery();
-  recovery_ = NewRecoveryFile();
+  recovery_ = io::NewRecoveryFile("studio");
   saved_frames_ = saved_by_user_ = 0;
   autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
 }
@@ -144,7 +127,7 @@ void ScanWorker::OpenProject(const QString& path) {
     mesh_.reset();
     settings_.pipeline = session_->pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
-    recovery_ = NewRecoveryFile();
+    recovery_ = io::NewRecoveryFile("studio");
     saved_frames_ = saved_by_user_ = session_->frames();
     autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
     QString msg = tr("Opened %1: %2 frames").arg(path).arg(session_->frames());
@@ -152,7 +135,7 @@ void ScanWorker::OpenProject(const QString& path) {
     try {
       if (p.source_spec.empty()) throw Error("the project does not say how its source was opened");
       OpenSource();
-      if (!SameCamera(source_->sensor().camera, p.sensor.camera)) {
+      if (!io::SameCamera(source_->sensor().camera, p.sensor.camera)) {
         source_.reset();
         live_ = nullptr;
         msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");

@@ -85,25 +85,19 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<I
   d_->mesh_mapper->SetInputData(d_->mesh);
   d_->mesh_mapper->SetScalarModeToUsePointData();
   d_->mesh_actor->SetMapper(d_->mesh_mapper);
-  d_->path_mapper->SetInputData(d_->path);
-  d_->path_mapper->ScalarVisibilityOff();
-  d_->path_actor->SetMapper(d_->path_mapper);
-  d_->path_actor->GetProperty()->SetColor(1.0, 0.85, 0.2);
-  d_->path_actor->GetProperty()->SetLineWidth(2);
-  d_->frustum_mapper->SetInputData(d_->frustum);
-  d_->frustum_mapper->ScalarVisibilityOff();
-  d_->frustum_actor->SetMapper(d_->frustum_mapper);
-  d_->frustum_actor->GetProperty()->SetColor(1.0, 0.3, 0.25);
-  d_->frustum_actor->GetProperty()->SetLineWidth(2);
   d_->renderer->AddActor(d_->mesh_actor);
-  d_->renderer->AddActor(d_->path_actor);
-  d_->renderer->AddActor(d_->frustum_actor);
-  d_->region_mapper->SetInputData(d_->region);
-  d_->region_mapper->ScalarVisibilityOff();
-  d_->region_actor->SetMapper(d_->region_mapper);
-  d_->region_actor->GetProperty()->SetColor(0.45, 0.7, 1.0);
-  d_->region_actor->GetProperty()->SetLineWidth(1);
-  d_->renderer->AddActor(d_->region_actor);
+  const auto lines = [this](vtkPolyData* data, vtkPolyDataMapper* mapper, vtkActor* actor, double r, double g, double b,
+                            float width) {
+    mapper->SetInputData(data);
+    mapper->ScalarVisibilityOff();
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(r, g, b);
+    actor->GetProperty()->SetLineWidth(width);
+    d_->renderer->AddActor(actor);
+  };
+  lines(d_->path, d_->path_mapper, d_->path_actor, 1.0, 0.85, 0.2, 2);
+  lines(d_->frustum, d_->frustum_mapper, d_->frustum_actor, 1.0, 0.3, 0.25, 2);
+  lines(d_->region, d_->region_mapper, d_->region_actor, 0.45, 0.7, 1.0, 1);
 }
 
 void VtkView::SetRegion(const Float3& lo, const Float3& hi) {

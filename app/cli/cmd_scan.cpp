@@ -4,12 +4,10 @@
 // Ctrl-C stops the scan, what was built so far is still written (and the error reported).
 // While it runs, the scan is autosaved to a recovery file (io/project.h) every --autosave
 // seconds; a scan that finishes removes it, one that crashed leaves it to be resumed.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -142,8 +140,7 @@ Command AddScanCommand(CLI::App& app) {
     if (project) {
       const PinholeCamera& pc = project->sensor.camera;
       const PinholeCamera& sc = source->sensor().camera;
-      if (pc.width != sc.width || pc.height != sc.height || std::abs(pc.fx - sc.fx) > 1e-3f ||
-          std::abs(pc.fy - sc.fy) > 1e-3f || std::abs(pc.cx - sc.cx) > 1e-3f || std::abs(pc.cy - sc.cy) > 1e-3f)
+      if (!io::SameCamera(pc, sc))
         throw InputError(a->resume, "the project was scanned with a " + std::to_string(pc.width) + "x" +
                                         std::to_string(pc.height) + " camera (fx " + std::to_string(pc.fx) +
                                         "), SOURCE has a " + std::to_string(sc.width) + "x" +
@@ -181,14 +178,7 @@ Command AddScanCommand(CLI::App& app) {
     const std::string source_text = project ? project->source : source->description();
     const std::string source_spec = same_source && !project->source_spec.empty() ? project->source_spec : a->source;
     // Autosaves go to a recovery file named after the project and the start time.
-    const fs::path recovery = [&] {
-      char stamp[32];
-      const std::time_t now = std::time(nullptr);
-      std::tm tm{};
-      gmtime_r(&now, &tm);
-      std::strftime(stamp, sizeof stamp, "-%Y%m%d-%H%M%S", &tm);
-      return io::RecoveryFolder() / (save.stem().string() + stamp + "-" + std::to_string(getpid()) + io::kProjectExtension);
-    }();
+    const fs::path recovery = io::NewRecoveryFile(save.stem().string());
     auto last_save = std::chrono::steady_clock::now();
     std::string failure, autosave_failure;
     bool stopped = false, far_said = false;

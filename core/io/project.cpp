@@ -1,5 +1,6 @@
 #include "io/project.h"
 
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -284,6 +285,7 @@ Project LoadProject(const fs::path& file) {
     throw InputError(file, std::string("has a manifest that is not JSON: ") + e.what());
   }
   Project p;
+  p.file = file;
   try {
     if (m.value("format", "") != "hdrfusion-project") throw InputError(file, "manifest: format is not hdrfusion-project");
     p.version = m.at("version").get<int>();
@@ -367,7 +369,7 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& p,
                                                      const std::function<void(pipeline::PipelineOptions&)>& overrides) {
   pipeline::PipelineOptions o = p.options;
   if (overrides) overrides(o);
-  o.Check();
+  o.Check();  // a setting's own message, naming the setting
   auto s = std::make_unique<pipeline::ScanSession>(o, p.sensor.camera, p.sensor);
   std::vector<pipeline::Keyframe> keyframes;
   for (const pipeline::Keyframe& k : p.keyframes)
@@ -380,8 +382,20 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& p,
   point.first_exposure_ms = p.resume.first_exposure_ms;
   point.reference_color = p.resume.reference_color.Clone();
   point.reference_depth = p.resume.reference_depth.Clone();
-  s->Resume(p.model, point, std::move(reports), std::move(keyframes), p.keyframes_thinned);
+  try {
+    s->Resume(p.model, point, std::move(reports), std::move(keyframes), p.keyframes_thinned);
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    if (p.file.empty()) throw;
+    throw InputError(p.file, e.what());
+  }
   return s;
+}
+
+bool SameCamera(const PinholeCamera& a, const PinholeCamera& b) {
+  return a.width == b.width && a.height == b.height && std::abs(a.fx - b.fx) < 1e-3f && std::abs(a.fy - b.fy) < 1e-3f &&
+         std::abs(a.cx - b.cx) < 1e-3f && std::abs(a.cy - b.cy) < 1e-3f;
 }
 
 bool SameSource(const Project& p, const std::string& spec, const std::string& description) {
@@ -397,10 +411,14 @@ fs::path RecoveryFolder() {
   return fs::temp_directory_path() / "hdrfusion-recovery";
 }
 
-fs::path RecoveryFileFor(const fs::path& project_or_name) {
-  std::string stem = project_or_name.stem().string();
-  if (stem.empty()) stem = "scan";
-  return RecoveryFolder() / (stem + kProjectExtension);
+fs::path NewRecoveryFile(const std::string& stem) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  std::strftime(stamp, sizeof stamp, "-%Y%m%d-%H%M%S-", &tm);
+  return RecoveryFolder() / ((stem.empty() ? std::string("scan") : stem) + stamp + std::to_string(getpid()) +
+                             kProjectExtension);
 }
 
 std::vector<fs::path> FindRecoveryFiles() {

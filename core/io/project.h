@@ -26,6 +26,7 @@ inline constexpr int kProjectVersion = 1;
 inline constexpr const char* kProjectExtension = ".hdrproj";
 
 struct Project {
+  std::filesystem::path file;            // where it was read from (names it in errors)
   int version = kProjectVersion;
   std::string source;                    // the source the scan read, as it described itself
   std::string source_spec;               // ... and as it was opened (`scan SOURCE`), if known
@@ -57,6 +58,7 @@ Project LoadProject(const std::filesystem::path& file);
 
 // A session that goes on from the project: its settings (with `overrides` applied on top,
 // which may not change the model's voxel size, truncation or encoding) and its camera.
+// Throws InputError naming the project's file where they do not fit.
 std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& project,
                                                      const std::function<void(pipeline::PipelineOptions&)>& overrides = {});
 
@@ -65,12 +67,16 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& project,
 // (however the path is written), or the same synthetic or camera spec; projects that did not
 // record their spec compare descriptions.
 bool SameSource(const Project& project, const std::string& spec, const std::string& description);
+// Whether a source's camera is the project's (size and intrinsics): a scan goes on only with
+// the camera it began with.
+bool SameCamera(const PinholeCamera& a, const PinholeCamera& b);
 
 // Recovery files: where autosaves of unfinished scans go (XDG state home,
 // $XDG_STATE_HOME/hdrfusion/recovery, else ~/.local/state/hdrfusion/recovery), and the ones
 // a crash left there, newest first.
 std::filesystem::path RecoveryFolder();
-std::filesystem::path RecoveryFileFor(const std::filesystem::path& project_or_name);
+// A fresh recovery file for a scan starting now: STEM-YYYYmmdd-HHMMSS-PID.hdrproj.
+std::filesystem::path NewRecoveryFile(const std::string& stem);
 std::vector<std::filesystem::path> FindRecoveryFiles();
 
 // The per-frame report as stored in report.json and project files, and back.

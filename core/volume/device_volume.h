@@ -95,6 +95,7 @@ class DeviceVolume {
   std::vector<int> last_seen_;  // per slot: the frame that last updated it
   int frame_ = 0;
   long swapped_out_ = 0, swapped_in_ = 0;
+  std::size_t host_bytes_ = 0;  // of host_
   void Extend(const BrickCoord* coords, int n);  // host coordinates
   std::string full_reason_;
 };

@@ -45,17 +45,13 @@ void VolumeOptions::Check() const {
     throw SettingError("volume.gpu_memory_mb", "must be 0 (no GPU budget) or between 4 MiB and 16 TiB");
 }
 
-std::size_t VolumeOptions::max_bricks() const {
+std::size_t VolumeOptions::BricksIn(double mb) const {
   // A brick also costs its entries in the two hash tables (at most half full: 4 slots of 12 bytes).
   const double per_brick = double(brick_bytes()) + 48.0;
-  return std::size_t(std::min(max_memory_mb * 1024 * 1024 / per_brick, double(1 << 30)));
+  return std::size_t(std::min(mb * 1024 * 1024 / per_brick, double(1 << 30)));
 }
-
-std::size_t VolumeOptions::gpu_bricks() const {
-  if (gpu_memory_mb <= 0) return 0;
-  const double per_brick = double(brick_bytes()) + 48.0;
-  return std::size_t(std::min(gpu_memory_mb * 1024 * 1024 / per_brick, double(1 << 30)));
-}
+std::size_t VolumeOptions::max_bricks() const { return BricksIn(max_memory_mb); }
+std::size_t VolumeOptions::gpu_bricks() const { return gpu_memory_mb > 0 ? BricksIn(gpu_memory_mb) : 0; }
 
 void BrickTable::Reset(std::size_t capacity) {
   keys_.assign(capacity, kEmptyKey);

@@ -44,6 +44,7 @@ struct VolumeOptions {
   std::size_t brick_bytes() const { return 512 * std::size_t(EncodingBytes(encoding)); }
   std::size_t max_bricks() const;
   std::size_t gpu_bricks() const;  // bricks gpu_memory_mb holds (0: no GPU budget)
+  std::size_t BricksIn(double mb) const;  // bricks (with their hash entries) in mb MiB
 };
 
 // An open-addressing hash table in host memory (the layout HashView reads): brick or group

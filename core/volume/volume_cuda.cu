@@ -64,9 +64,10 @@ void InsertAll(std::uint64_t* keys, int* values, std::uint64_t* gkeys, int* gval
   });
 }
 
-// Visible keys the table has go to the to-do list (their slots), the others to `fresh`.
-void SplitKeys(HashView table, const std::uint64_t* visible, int n_visible, int* counts, std::uint64_t* fresh, int* todo) {
-  par::ForEach(par::Gpu{}, std::max(n_visible, 1), [=] __device__(int i) {
+// Visible keys the table has go to the to-do list (their slots), the others to `fresh`;
+// `capacity` threads, the first counts[0] of which have a key.
+void SplitKeys(HashView table, const std::uint64_t* visible, int capacity, int* counts, std::uint64_t* fresh, int* todo) {
+  par::ForEach(par::Gpu{}, capacity, [=] __device__(int i) {
     if (i >= counts[0]) return;
     const std::uint64_t k = visible[i];
     const int slot = table.Find(k);
@@ -103,11 +104,7 @@ DeviceVolume::DeviceVolume(const VolumeOptions& o) : mirror_(o), vbytes_(Encodin
   Reserve(1024);
 }
 
-std::size_t DeviceVolume::bytes() const {
-  std::size_t host = 0;
-  for (const auto& b : host_) host += b.second.size() + sizeof(std::uint64_t);
-  return gpu_bytes() + host;
-}
+std::size_t DeviceVolume::bytes() const { return gpu_bytes() + host_bytes_; }
 
 void DeviceVolume::RebuildTables(std::size_t capacity) {
   keys_ = DeviceBuffer<std::uint64_t>(capacity);
@@ -252,6 +249,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
           if (it == host_.end()) continue;
           cuda::CopyHostToDevice(pool_.data() + std::size_t(base + i) * B, it->second.data(), B);
           host_.erase(it);
+          host_bytes_ -= B + sizeof(std::uint64_t);
           ++swapped_in_;
         }
       }
@@ -270,10 +268,9 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
 
 int DeviceVolume::SplitVisible(int* n) {
   HDRF_CUDA_CHECK(cudaMemset(counts_.data() + 1, 0, 2 * sizeof(int)));
-  int visible_count = 0;
-  HDRF_CUDA_CHECK(cudaMemcpy(&visible_count, counts_.data(), sizeof(int), cudaMemcpyDeviceToHost));
-  SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(), visible_count,
-            counts_.data(), fresh_.data(), todo_.data());
+  // Over the list's capacity: the kernel reads the visible count on the device (no wait here).
+  SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(),
+            int(visible_.size()), counts_.data(), fresh_.data(), todo_.data());
   HDRF_CUDA_CHECK(cudaMemcpy(n, counts_.data(), 3 * sizeof(int), cudaMemcpyDeviceToHost));
   return n[0];
 }
@@ -302,6 +299,7 @@ void DeviceVolume::SwapOut(int count) {
       cuda::CopyDeviceToHost(voxels.data(), pool_.data() + std::size_t(s) * B, B);
       const BrickCoord& c = coords[std::size_t(s)];
       host_[BrickKey(c.x, c.y, c.z)] = std::move(voxels);
+      host_bytes_ += B + sizeof(std::uint64_t);
     } else {
       keep.push_back(s);
       seen.push_back(last_seen_[std::size_t(s)]);
@@ -374,6 +372,7 @@ void DeviceVolume::Upload(const Volume& v) {
   const std::size_t B = 512 * std::size_t(vbytes_);
   allocated_ = 0;
   host_.clear();
+  host_bytes_ = 0;
   swapped_out_ = swapped_in_ = 0;
   full_reason_.clear();
   if (!Reserve(std::max(on_gpu, 1024))) throw Error("the GPU has too little memory free for the model: " + full_reason_);
@@ -385,6 +384,7 @@ void DeviceVolume::Upload(const Volume& v) {
   for (int i = 0; i < first; ++i) {
     const std::uint8_t* src = v.pool().data() + std::size_t(i) * B;
     host_[BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z)] = std::vector<std::uint8_t>(src, src + B);
+    host_bytes_ += B + sizeof(std::uint64_t);
   }
   if (on_gpu > 0) {
     cuda::CopyHostToDevice(pool_.data(), v.pool().data() + std::size_t(first) * B, std::size_t(on_gpu) * B);

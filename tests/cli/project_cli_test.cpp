@@ -86,6 +86,7 @@ TEST_F(ProjectCli, SaveResumeExportAndEval) {
   r = RunCli("scan --resume " + half + " " + seq + " --out " + (dir / "c").string() + " --voxel-size 0.01");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("project's own settings"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("half.hdrproj"), std::string::npos) << r.output;
   // Finished scans leave no recovery file.
   EXPECT_TRUE(io::FindRecoveryFiles().empty());
 }

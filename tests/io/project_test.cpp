@@ -152,7 +152,7 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   // Resuming with settings that change the model is refused, saying why.
   test::ExpectErrorContaining(
       [&] { io::ResumeSession(p, [](pipeline::PipelineOptions& o) { o.volume.voxel_m = 0.01f; }); },
-      {"10.000000 mm", "project's own settings"});
+      {"good.hdrproj", "10.000000 mm", "project's own settings"});
 }
 
 // A save that cannot finish (here: the folder is read-only) leaves the earlier save intact
