@@ -24,6 +24,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QPixmap>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressDialog>
@@ -353,6 +354,12 @@ void MainWindow::BuildStatus() {
   health_ = new QLabel(tr("Tracking: -"));
   health_->setObjectName("health");
   health_->setWordWrap(true);
+  reloc_caption_ = new QLabel;
+  reloc_caption_->setWordWrap(true);
+  reloc_caption_->hide();
+  reloc_hint_ = new QLabel;
+  reloc_hint_->setObjectName("reloc_hint");
+  reloc_hint_->hide();
   error_ = new QLabel;
   error_->setObjectName("error");
   error_->setWordWrap(true);
@@ -365,6 +372,7 @@ void MainWindow::BuildStatus() {
   memory_->setWordWrap(true);
   plot_ = new ExposurePlot;
   for (QWidget* x : {static_cast<QWidget*>(frames_label_), static_cast<QWidget*>(health_),
+                     static_cast<QWidget*>(reloc_caption_), static_cast<QWidget*>(reloc_hint_),
                      static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_),
                      static_cast<QWidget*>(plot_)})
     l->addWidget(x);
@@ -705,15 +713,39 @@ void MainWindow::Render() {
                                         .arg(int(100 * r.depth_beyond_far))
                                         .arg(s->raycast_far_m, 0, 'f', 1)
                           : QString();
-  if (r.tracking.lost) {
-    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(QString::fromStdString(r.tracking.why)) + far);
+  using pipeline::FrameState;
+  const QString why = QString::fromStdString(r.why);
+  if (r.state == FrameState::kWaiting) {
+    health_->setText(tr("WAITING: %1").arg(why) + far);
+    health_->setStyleSheet("QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
+  } else if (r.state == FrameState::kLost) {
+    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(why) + far);
     health_->setStyleSheet("QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
+  } else if (!r.fused) {
+    health_->setText(tr("FOUND AGAIN, CONFIRMING: %1 (frame not fused)").arg(why) + far);
+    health_->setStyleSheet("QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
   } else {
-    health_->setText(tr("Tracking OK: %1 % of pixels matched, %2 iterations")
-                         .arg(int(100 * r.tracking.inlier_share))
-                         .arg(r.tracking.iterations) + far);
-    health_->setStyleSheet(far.isEmpty() ? "QLabel { color: white; background: #207040; padding: 3px; }"
-                                         : "QLabel { color: white; background: #a07010; padding: 3px; }");
+    // The quality figure warns before a loss: below one half the operator should slow down.
+    const bool slow = r.quality < 0.5;
+    health_->setText((slow ? tr("Tracking quality %1 %: SLOW DOWN (%2 % of pixels matched)")
+                           : tr("Tracking quality %1 % (%2 % of pixels matched)"))
+                         .arg(int(100 * r.quality))
+                         .arg(int(100 * r.tracking.inlier_share)) +
+                     (r.state == FrameState::kRelocalised ? "\n" + tr("Relocalised from an earlier view") : QString()) +
+                     far);
+    health_->setStyleSheet(far.isEmpty() && !slow ? "QLabel { color: white; background: #207040; padding: 3px; }"
+                                                  : "QLabel { color: white; background: #a07010; padding: 3px; }");
+  }
+  if (!s->reloc_hint.empty()) {
+    reloc_hint_->setPixmap(QPixmap::fromImage(FromColor(s->reloc_hint))
+                               .scaled(240, 180, Qt::KeepAspectRatio, Qt::SmoothTransformation));
+    reloc_hint_->setToolTip(tr("The scan's view at frame %1").arg(s->reloc_hint_frame + 1));
+    reloc_caption_->setText(tr("Point the camera where the scan saw this (frame %1):").arg(s->reloc_hint_frame + 1));
+    reloc_hint_->show();
+    reloc_caption_->show();
+  } else {
+    reloc_hint_->hide();
+    reloc_caption_->hide();
   }
   const auto& m = r.ms;
   stages_->setText(tr("<table><tr><td>convert</td><td align=right>%1 ms</td></tr><tr><td>normalize</td><td align=right>%2 ms</td></tr>"

@@ -141,6 +141,7 @@ class MainWindow : public QMainWindow {
   SensorPanel* sensor_panel_ = nullptr;
   std::unique_ptr<sensors::HotplugMonitor> hotplug_;  // events come on OpenNI2's threads
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
+  QLabel *reloc_hint_ = nullptr, *reloc_caption_ = nullptr;
   QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
   int frames_shown_ = 0;
   bool scripted_done_ = false;

@@ -323,6 +323,11 @@ void ScanWorker::Step() {
       mesh_time_ms_ = now;
     }
     s->color = std::move(f.color);
+    if (const int k = s->report.nearest_entry; !s->report.fused && k >= 0 &&
+                                              k < int(pipe.relocaliser().entries().size())) {
+      s->reloc_hint = pipe.relocaliser().entries()[std::size_t(k)].thumbnail.Clone();
+      s->reloc_hint_frame = pipe.relocaliser().entries()[std::size_t(k)].frame;
+    }
     s->images = pipe.DownloadViews();
     FillScanState(*s);
     if (live_) s->live = Status();

@@ -70,6 +70,10 @@ struct Snapshot {
   std::optional<LiveStatus> live;
   pipeline::FrameReport report;
   ColorImage color;
+  // While lost: the earlier view of the scan this frame looks most like (where to point the
+  // camera), and the frame it was taken at; empty otherwise.
+  ColorImage reloc_hint;
+  int reloc_hint_frame = -1;
   pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast
   PinholeCamera camera;
   std::vector<Pose> trajectory;      // every pose so far

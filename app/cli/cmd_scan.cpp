@@ -187,10 +187,21 @@ Command AddScanCommand(CLI::App& app) {
       StopOnInterrupt stop;  // Ctrl-C ends the scan early, keeping what it built
       try {
         pipeline::FrameInput f;
+        pipeline::FrameState last_state = pipeline::FrameState::kTracked;
+        std::string last_why;
         for (int i = 0; i < total && source->Next(f); ++i) {
           const pipeline::FrameReport& r = session.Process(f);
-          if (r.tracking.lost)
-            std::fprintf(stderr, "\nscan: frame %d: tracking lost (%s); not fused\n", r.index, r.tracking.why.c_str());
+          // What became of the frame, said when it changes (a long loss is one line, not one per frame).
+          if (r.state != last_state || (r.state != pipeline::FrameState::kTracked && r.why != last_why)) {
+            if (r.state == pipeline::FrameState::kTracked || (r.state == pipeline::FrameState::kRelocalised && r.fused))
+              std::fprintf(stderr, "\nscan: frame %d: tracking again%s; fused\n", r.index,
+                           r.state == pipeline::FrameState::kRelocalised ? " (relocalised from an earlier view)" : "");
+            else
+              std::fprintf(stderr, "\nscan: frame %d: %s (%s); not fused\n", r.index, pipeline::FrameStateName(r.state),
+                           r.why.c_str());
+          }
+          last_state = r.state;
+          last_why = r.why;
           // Said when a quarter of the view first lies beyond the ray cast, again only after it
           // came back within it.
           if (r.depth_beyond_far > 0.25 && !far_said)
@@ -230,6 +241,11 @@ Command AddScanCommand(CLI::App& app) {
     if (stopped) std::fprintf(stderr, "scan: stopped by Ctrl-C after %d frames; saving what was built\n", session.frames());
     const int n = session.frames();
     if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
+    if (session.count(pipeline::FrameState::kWaiting) == n && !pipe.volume_stats().allocated_bricks)
+      throw Error("none of the " + std::to_string(n) + " frames could anchor the model: none had depth on at least " +
+                  std::to_string(int(std::ceil(100 * o.tracker.min_anchor_depth))) +
+                  " % of its pixels (tracker.min_anchor_depth); nothing was written" +
+                  (failure.empty() ? "" : " (and the source failed: " + failure + ")"));
     // The project first: the model is the most expensive thing to lose.
     const auto save_start = std::chrono::steady_clock::now();
     io::SaveProject(save, session, {source_text, source_spec, failure.empty()});
@@ -265,6 +281,10 @@ Command AddScanCommand(CLI::App& app) {
                    {"device", DeviceName(pipe.device())},
                    {"frames", n},
                    {"lost_frames", lost},
+                   {"fused_frames", session.fused()},
+                   {"waiting_frames", session.count(pipeline::FrameState::kWaiting)},
+                   {"unconfirmed_frames", session.count(pipeline::FrameState::kConfirming)},
+                   {"relocalisations", session.relocalisations()},
                    {"options", json::parse(io::PipelineOptionsToJson(o))},
                    {"mean_ms", {{"convert", mean.convert}, {"normalize", mean.normalize}, {"track", mean.track},
                                 {"compensate", mean.compensate}, {"integrate", mean.integrate},
@@ -281,8 +301,10 @@ Command AddScanCommand(CLI::App& app) {
     if (exp_err) report["exposure_median_relative_error"] = *exp_err;
     if (!failure.empty()) report["error"] = failure;
     io::WriteFileAtomically(out / "report.json", report.dump(1) + "\n");
-    std::printf("scanned %d frames (%d lost) at %.1f frames/s: %zu mesh vertices, %zu triangles\n", n, lost,
-                session.frames_per_second(), m.position.size(), m.triangles.size());
+    std::printf("scanned %d frames (%d fused, %d lost, %d relocalisations) at %.1f frames/s: %zu mesh vertices, %zu "
+                "triangles\n",
+                n, session.fused(), lost, session.relocalisations(), session.frames_per_second(), m.position.size(),
+                m.triangles.size());
     if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
     std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, keyframes/ (%zu), "
                 "keyframes.json, sensor.json, report.json} and the project %s\n",

@@ -164,15 +164,22 @@ json FrameReportToJson(const pipeline::FrameReport& r) {
              {"T_world_camera", PoseToJson(r.T_world_camera)},
              {"ms", {{"convert", r.ms.convert}, {"normalize", r.ms.normalize}, {"track", r.ms.track},
                      {"compensate", r.ms.compensate}, {"integrate", r.ms.integrate}, {"raycast", r.ms.raycast}}},
+             {"state", pipeline::FrameStateName(r.state)},
+             {"quality", r.quality},
+             {"why", r.why},
              {"tracking", {{"lost", r.tracking.lost}, {"why", r.tracking.why}, {"inlier_share", r.tracking.inlier_share},
                            {"condition", r.tracking.condition}, {"rms_icp_m", r.tracking.rms_icp_m},
-                           {"rms_photo", r.tracking.rms_photo}, {"iterations", r.tracking.iterations}}},
+                           {"rms_photo", r.tracking.rms_photo}, {"icp_inliers", r.tracking.icp_inliers},
+                           {"photo_inliers", r.tracking.photo_inliers}, {"iterations", r.tracking.iterations}}},
              {"fused", r.fused},
+             {"depth_share", r.depth_share},
              {"allocated_bricks", r.allocated_bricks},
              {"volume_full", r.volume_full},
              {"depth_beyond_far", r.depth_beyond_far},
              {"exposure", {{"estimated_ratio", r.exposure_ratio}, {"samples", r.exposure_samples}}}};
   if (r.exposure_ratio_reported) fr["exposure"]["reported_ratio"] = *r.exposure_ratio_reported;
+  if (r.reloc_entry >= 0) fr["reloc_entry"] = r.reloc_entry;
+  if (r.nearest_entry >= 0) fr["nearest_entry"] = r.nearest_entry;
   return fr;
 }
 
@@ -194,7 +201,20 @@ pipeline::FrameReport FrameReportFromJson(const fs::path& file, const json& j) {
     r.tracking.rms_icp_m = t.at("rms_icp_m").get<double>();
     r.tracking.rms_photo = t.at("rms_photo").get<double>();
     r.tracking.iterations = t.at("iterations").get<int>();
+    r.tracking.icp_inliers = t.value("icp_inliers", 0.0);
+    r.tracking.photo_inliers = t.value("photo_inliers", 0.0);
     r.fused = j.at("fused").get<bool>();
+    const std::string state = j.value("state", r.fused ? "tracked" : "lost");
+    bool known = false;
+    for (auto st : {pipeline::FrameState::kWaiting, pipeline::FrameState::kTracked, pipeline::FrameState::kLost,
+                    pipeline::FrameState::kConfirming, pipeline::FrameState::kRelocalised})
+      if (state == pipeline::FrameStateName(st)) r.state = st, known = true;
+    if (!known) throw InputError(file, "frame report " + std::to_string(r.index) + ": unknown state '" + state + "'");
+    r.quality = j.value("quality", r.fused ? 1.0 : 0.0);
+    r.why = j.value("why", r.tracking.why);
+    r.depth_share = j.value("depth_share", 0.0);
+    r.reloc_entry = j.value("reloc_entry", -1);
+    r.nearest_entry = j.value("nearest_entry", -1);
     r.allocated_bricks = j.at("allocated_bricks").get<std::size_t>();
     r.volume_full = j.value("volume_full", "");
     r.depth_beyond_far = j.value("depth_beyond_far", 0.0);
@@ -226,6 +246,18 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
                  {"T_world_previous", PoseToJson(point.previous_pose)},
                  {"reference_frame", !point.reference_color.empty()}};
   if (point.first_exposure_ms) resume["first_exposure_ms"] = *point.first_exposure_ms;
+  resume["anchored"] = point.anchored;
+  resume["recovering"] = point.recovering;
+  resume["confirmed"] = point.confirmed;
+  resume["residuals"] = point.residuals;
+  resume["photo_residuals"] = point.photo_residuals;
+  resume["lost_run"] = point.lost_run;
+  resume["exposure_drifts"] = point.exposure_drifts;
+  json reloc = json::array();
+  for (const pipeline::RelocEntry& e : point.reloc)
+    reloc.push_back({{"frame", e.frame}, {"T_world_camera", PoseToJson(e.T_world_camera)}, {"width", e.code.width},
+                     {"height", e.code.height}});
+  resume["reloc"] = reloc;
   const json manifest = {
       {"format", "hdrfusion-project"},
       {"version", kProjectVersion},
@@ -260,6 +292,17 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
     for (const pipeline::Keyframe& k : session.keyframes()) {
       const std::vector<std::uint8_t> png = EncodeColorPng(k.color);
       w.Add("KFRM", png.data(), png.size());
+    }
+    for (const pipeline::RelocEntry& e : point.reloc) {
+      // The code (depth, shade as f32, then one byte per cell: lit) and the thumbnail (PNG).
+      const std::size_t n = e.code.depth.size();
+      std::vector<std::uint8_t> code(n * 9);
+      std::memcpy(code.data(), e.code.depth.data(), n * 4);
+      std::memcpy(code.data() + n * 4, e.code.shade.data(), n * 4);
+      std::memcpy(code.data() + n * 8, e.code.lit.data(), n);
+      w.Add("RLOC", code.data(), code.size());
+      const std::vector<std::uint8_t> png = EncodeColorPng(e.thumbnail);
+      w.Add("RTHB", png.data(), png.size());
     }
     if (!point.reference_color.empty()) {
       const std::vector<std::uint8_t> png = EncodeColorPng(point.reference_color);
@@ -325,6 +368,38 @@ Project LoadProject(const fs::path& file) {
     p.resume.pose = PoseFromJson(file, r.at("T_world_camera"), "resume pose");
     p.resume.previous_pose = PoseFromJson(file, r.at("T_world_previous"), "resume previous pose");
     if (r.contains("first_exposure_ms")) p.resume.first_exposure_ms = r.at("first_exposure_ms").get<double>();
+    // Verification and relocalisation state (absent in projects saved before it existed: a
+    // scan that ran any frame was anchored by its first).
+    p.resume.anchored = r.value("anchored", p.resume.frames > 0);
+    p.resume.recovering = r.value("recovering", false);
+    p.resume.confirmed = r.value("confirmed", 0);
+    p.resume.residuals = r.value("residuals", std::vector<double>{});
+    p.resume.photo_residuals = r.value("photo_residuals", std::vector<double>{});
+    p.resume.lost_run = r.value("lost_run", 0);
+    p.resume.exposure_drifts = r.value("exposure_drifts", std::vector<double>{});
+    const std::vector<const Chunk*> codes = All(chunks, "RLOC"), thumbs = All(chunks, "RTHB");
+    const json reloc = r.value("reloc", json::array());
+    if (codes.size() != reloc.size() || thumbs.size() != reloc.size())
+      throw InputError(file, "lists " + std::to_string(reloc.size()) + " relocalisation views but holds " +
+                                 std::to_string(codes.size()) + " codes and " + std::to_string(thumbs.size()) + " thumbnails");
+    for (std::size_t i = 0; i < reloc.size(); ++i) {
+      pipeline::RelocEntry e;
+      e.frame = reloc[i].at("frame").get<int>();
+      e.T_world_camera = PoseFromJson(file, reloc[i].at("T_world_camera"), "relocalisation view " + std::to_string(i) + " pose");
+      e.code.width = reloc[i].at("width").get<int>();
+      e.code.height = reloc[i].at("height").get<int>();
+      const long n = long(e.code.width) * e.code.height;
+      if (e.code.width < 1 || e.code.height < 1 || n > 1 << 20 || codes[i]->data.size() != std::size_t(n) * 9)
+        throw InputError(file, "relocalisation code " + std::to_string(i) + " does not match its size");
+      e.code.depth.resize(std::size_t(n));
+      e.code.shade.resize(std::size_t(n));
+      e.code.lit.resize(std::size_t(n));
+      std::memcpy(e.code.depth.data(), codes[i]->data.data(), std::size_t(n) * 4);
+      std::memcpy(e.code.shade.data(), codes[i]->data.data() + n * 4, std::size_t(n) * 4);
+      std::memcpy(e.code.lit.data(), codes[i]->data.data() + n * 8, std::size_t(n));
+      e.thumbnail = DecodeColorPng(file, thumbs[i]->data, "relocalisation view " + std::to_string(i));
+      p.resume.reloc.push_back(std::move(e));
+    }
     if (r.at("reference_frame").get<bool>()) {
       const Chunk& rc = Need(file, chunks, "REFC", "the reference frame's colour");
       const Chunk& rd = Need(file, chunks, "REFD", "the reference frame's depth");
@@ -382,6 +457,14 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& p,
   point.first_exposure_ms = p.resume.first_exposure_ms;
   point.reference_color = p.resume.reference_color.Clone();
   point.reference_depth = p.resume.reference_depth.Clone();
+  point.anchored = p.resume.anchored;
+  point.recovering = p.resume.recovering;
+  point.confirmed = p.resume.confirmed;
+  point.residuals = p.resume.residuals;
+  point.photo_residuals = p.resume.photo_residuals;
+  point.lost_run = p.resume.lost_run;
+  point.exposure_drifts = p.resume.exposure_drifts;
+  point.reloc = p.resume.reloc;
   try {
     s->Resume(p.model, point, std::move(reports), std::move(keyframes), p.keyframes_thinned);
   } catch (const InputError&) {

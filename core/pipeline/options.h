@@ -7,6 +7,7 @@
 #include "exposure/exposure.h"
 #include "imaging/imaging.h"
 #include "normalized_radiance/normalized_radiance.h"
+#include "pipeline/relocaliser.h"
 #include "tracking/tracking.h"
 #include "volume/volume.h"
 
@@ -15,6 +16,7 @@ namespace hdrf::pipeline {
 struct PipelineOptions {
   volume::VolumeOptions volume;
   tracking::TrackerOptions tracker;
+  RelocOptions reloc;
   exposure::ExposureOptions exposure;
   nr::NormalizedRadianceOptions nr;
   imaging::DepthFilterOptions depth;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -36,7 +38,7 @@ StageTimes StageTimes::operator/(double n) const {
 
 Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
                    const SensorInfo& sensor)
-    : o_((options.Check(), options)), cam_(camera) {
+    : o_((options.Check(), options)), cam_(camera), reloc_(options.reloc) {
   if (!camera.Valid()) throw SettingError("camera", "intrinsics must be positive");
   if (!sensor.response)
     throw Error("the sensor has no response calibration (sensor.json 'response'); calibrate it "
@@ -76,6 +78,117 @@ VolumeStats Pipeline::volume_stats() const {
 }
 FrameViews Pipeline::DownloadViews() { return backend_->DownloadViews(); }
 
+const char* FrameStateName(FrameState s) {
+  switch (s) {
+    case FrameState::kWaiting: return "waiting";
+    case FrameState::kTracked: return "tracked";
+    case FrameState::kLost: return "lost";
+    case FrameState::kConfirming: return "confirming";
+    case FrameState::kRelocalised: return "relocalised";
+  }
+  return "?";
+}
+
+namespace {
+constexpr std::size_t kHistory = 30;  // fused frames the verification judges against
+constexpr std::size_t kMinHistory = 5;
+constexpr double kShiftM = 0.1;      // relocalisation: starts shifted this far along each camera axis...
+constexpr double kTurnRad = 0.0873;  // ...and turned this far (5 degrees) about its x and y axes
+constexpr double kRecoveringGrowth = 1.5;  // residual bound while recovering, times the usual
+constexpr int kMaxExtrapolate = 30;  // frames the last motion is carried on while lost
+void Push(std::vector<double>& v, double x) {
+  v.push_back(x);
+  if (v.size() > kHistory) v.erase(v.begin());
+}
+bool UsesIcp(tracking::TrackerKind k) { return k == tracking::TrackerKind::kNrIcp || k == tracking::TrackerKind::kIcp; }
+double Clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
+std::string Fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+}  // namespace
+
+double Pipeline::Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+
+bool UsesPhoto(tracking::TrackerKind k) { return k != tracking::TrackerKind::kIcp; }
+
+// The residual of each term the tracker uses against the scan's usual: ratios (1: as usual;
+// 0 where there is no history yet or the residual is under its floor).
+struct ResidualRatios {
+  double icp = 0, photo = 0;
+  double worst() const { return std::max(icp, photo); }
+};
+
+Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering) {
+  Verdict v;
+  const tracking::TrackerOptions& t = o_.tracker;
+  if (r.lost) {
+    v.why = r.why;
+    v.score = 1e30;
+    return v;
+  }
+  // Residuals: each term against its own recent median. Recovering (the pose does not come
+  // from the last one), the bound is tighter: a view whose geometry leaves a direction loose
+  // has wrong poses with as small a point-to-surface error as the true one, and only the
+  // radiance residual tells them apart.
+  const double growth = recovering ? std::min(double(t.verify_growth), kRecoveringGrowth) : t.verify_growth;
+  auto check = [&](const std::vector<double>& hist, double res, double floor, bool icp, double* ratio) {
+    if (hist.size() < kMinHistory) return;
+    const double base = Median(hist);
+    *ratio = base > 0 ? res / base : 0;
+    if (!v.why.empty() || res <= floor || res <= growth * base) return;
+    v.why = icp ? "point-to-surface error " + Fixed(100 * res, 1) + " cm, " + Fixed(res / base, 1) +
+                      "x the scan's usual " + Fixed(100 * base, 1) + " cm"
+                : "radiance residual " + Fixed(res, 3) + ", " + Fixed(res / base, 1) + "x the scan's usual " +
+                      Fixed(base, 3);
+  };
+  ResidualRatios ratios;
+  if (UsesIcp(t.kind)) check(icp_residuals_, r.rms_icp_m, t.verify_floor_m, true, &ratios.icp);
+  if (UsesPhoto(t.kind)) check(photo_residuals_, r.rms_photo, t.verify_floor_photo, false, &ratios.photo);
+  v.score = ratios.worst();
+  v.residual_ratio = ratios.worst();
+  if (!v.why.empty()) return v;
+  const double robust = UsesIcp(t.kind) ? r.icp_inliers : r.photo_inliers;
+  if (robust < t.min_robust_inliers) {
+    v.why = "only " + std::to_string(int(100 * robust)) + " % of the matched pixels fit the pose";
+    return v;
+  }
+  Backend& b = *backend_;
+  if (b.HasRender()) {
+    v.exposure = b.EstimateExposure(r.T_world_camera);
+    if (v.exposure.valid && in.exposure_ms && first_exposure_ms_ && *in.exposure_ms > 0 && v.exposure.ratio > 0) {
+      v.drift = std::log(v.exposure.ratio / (*first_exposure_ms_ / *in.exposure_ms));
+      if (exposure_drifts_.size() >= kMinHistory) {
+        const double usual = Median(exposure_drifts_);
+        if (std::fabs(v.drift - usual) > std::log1p(double(t.max_exposure_drift)))
+          v.why = "the exposure the pose implies is " + Fixed(std::exp(v.drift - usual), 2) +
+                  "x the sensor's reported exposure (relative to the scan so far)";
+      }
+    }
+  }
+  return v;
+}
+
+double Pipeline::Quality(const tracking::TrackResult& r, const Verdict& v) const {
+  if (r.lost || !v.why.empty()) return 0;
+  const tracking::TrackerOptions& t = o_.tracker;
+  const double share = Clamp01((r.inlier_share - t.min_inlier_share) / std::max(1e-6, 0.6 - double(t.min_inlier_share)));
+  const double robust_v = UsesIcp(t.kind) ? r.icp_inliers : r.photo_inliers;
+  const double robust = Clamp01((robust_v - t.min_robust_inliers) / std::max(1e-6, 0.9 - double(t.min_robust_inliers)));
+  // 1 up to the usual residual, 0 at the verification's bound.
+  const double residual = v.residual_ratio <= 1 ? 1 : Clamp01((t.verify_growth - v.residual_ratio) / (t.verify_growth - 1 + 1e-9));
+  const Pose step = pose_.inverse() * r.T_world_camera;
+  const double motion = Clamp01(1 - std::max(se3::TranslationNorm(step) / t.max_jump_m,
+                                             se3::RotationAngle(step) / (t.max_jump_deg * 3.14159265358979 / 180)));
+  return std::min({share, robust, residual, motion});
+}
+
 FrameReport Pipeline::Process(const FrameInput& in) {
   if (in.color.width() != cam_.width || in.color.height() != cam_.height ||
       in.depth_m.width() != cam_.width || in.depth_m.height() != cam_.height)
@@ -84,17 +197,31 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   FrameReport rep;
   rep.index = index_;
   rep.timestamp = in.timestamp;
+  Backend& b = *backend_;
   {
-    long with_depth = 0, beyond = 0;
+    long with_depth = 0, beyond = 0, samples = 0;
     for (int y = 0; y < in.depth_m.height(); y += 4)
       for (int x = 0; x < in.depth_m.width(); x += 4) {
         const float z = in.depth_m(x, y);
+        ++samples;
         with_depth += z > 0;
         beyond += z > o_.volume.raycast_far_m;
       }
     rep.depth_beyond_far = with_depth > 0 ? double(beyond) / double(with_depth) : 0.0;
+    rep.depth_share = samples > 0 ? double(with_depth) / double(samples) : 0.0;
   }
-  Backend& b = *backend_;
+  // 0. Until a frame has anchored the model, only a frame with enough depth can.
+  if (!anchored_ && rep.depth_share < o_.tracker.min_anchor_depth) {
+    rep.state = FrameState::kWaiting;
+    rep.tracking.lost = true;
+    rep.why = rep.tracking.why = "waiting for a frame to anchor the model: " + std::to_string(int(100 * rep.depth_share)) +
+                                 " % of its pixels have depth, " +
+                                 std::to_string(int(std::ceil(100 * o_.tracker.min_anchor_depth))) + " % needed";
+    rep.T_world_camera = pose_;
+    rep.allocated_bricks = b.AllocatedBricks();
+    ++index_;
+    return rep;
+  }
   auto now = [&] {
     b.Synchronize();
     return Clock::now();
@@ -106,44 +233,139 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // 2. Normalize.
   b.Normalize();
   const auto t2 = now();
-  // 3. Track against the reference (the first frame has none and defines the world).
+  // 3. Track against the reference and verify the pose; when lost or recovering, the scan's
+  // earlier views are tried too. The anchoring frame has no reference and defines the world.
   b.BuildLive();
-  if (!b.HasReference()) {
+  bool fuse = false, accepted = false, searched = false;
+  Verdict verdict;
+  if (!anchored_) {
+    anchored_ = true;
     previous_pose_ = pose_;
+    first_exposure_ms_ = in.exposure_ms;
     rep.tracking.T_world_camera = pose_;
     rep.tracking.inlier_share = 1;
+    rep.quality = 1;
+    fuse = accepted = true;
   } else {
-    // Start from a constant-velocity prediction (the last inter-frame motion, repeated). The
-    // inlier share counts matches against what both sides can offer: where the model covers
-    // only part of the view (an area not scanned yet, or beyond the volume), matching all of
-    // that part is a success, not a loss.
-    const Pose predicted = se3::Orthonormalized(pose_ * (previous_pose_.inverse() * pose_));
-    rep.tracking = tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T); }, o_.tracker.levels,
-                                   std::min(b.LiveValid(), b.ReferenceValid()), predicted, o_.tracker);
-    if (!rep.tracking.lost) {
-      previous_pose_ = pose_;
-      pose_ = rep.tracking.T_world_camera;
+    // Tracking on from an accepted pose starts from a constant-velocity prediction (the
+    // last inter-frame motion, repeated). The inlier share counts matches against what both
+    // sides can offer: where the model covers only part of the view (an area not scanned
+    // yet), matching all of that part is a success, not a loss.
+    auto track = [&](const Pose& from) {
+      return tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T); }, o_.tracker.levels,
+                             std::min(b.LiveValid(), b.ReferenceValid()), from, o_.tracker);
+    };
+    const Pose velocity = previous_pose_.inverse() * pose_;
+    tracking::TrackResult r;
+    if (lost_run_ == 0 || !reference_from_model_) {  // (frame to frame: the reference is the last tracked frame)
+      r = track(se3::Orthonormalized(pose_ * velocity));
+      verdict = Verify(r, in, recovering_);
+    } else {
+      // Lost: from the last pose carried on with its last motion (a camera that went on
+      // moving while it was covered), and from the last pose itself (one that stopped),
+      // each against the model ray cast from there.
+      Pose carried = pose_;
+      for (int k = 0; k <= std::min(lost_run_, kMaxExtrapolate); ++k) carried = se3::Orthonormalized(carried * velocity);
+      searched = true;
+      bool first = true;
+      for (const Pose& start : {carried, pose_}) {
+        b.Raycast(start);
+        b.ReferenceFromRender();
+        const tracking::TrackResult rc = track(start);
+        const Verdict vc = Verify(rc, in, true);
+        if (first || (vc.why.empty() && (!verdict.why.empty() || vc.score < verdict.score))) {
+          r = rc;
+          verdict = vc;
+        }
+        first = false;
+      }
+    }
+    if ((recovering_ || !verdict.why.empty()) && o_.reloc.enabled && reference_from_model_ && !reloc_.entries().empty()) {
+      searched = true;
+      const RelocCode code = MakeRelocCode(in.color, in.depth_m, inverse_);
+      // Each candidate view is tracked from its own pose; the nearest one also from poses
+      // shifted along and turned about the camera's axes, which reach a camera beyond the
+      // tracker's reach of that view. Their poses are judged as strictly as while recovering.
+      const std::vector<const RelocEntry*> candidates = reloc_.Candidates(code);
+      if (!candidates.empty()) rep.nearest_entry = int(candidates[0] - reloc_.entries().data());
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        const RelocEntry* e = candidates[c];
+        b.Raycast(e->T_world_camera);
+        b.ReferenceFromRender();
+        std::vector<Pose> starts = {e->T_world_camera};
+        if (c == 0) {
+          for (int axis = 0; axis < 3; ++axis)
+            for (double d : {-kShiftM, kShiftM}) {
+              Vec6 xi = Vec6::Zero();
+              xi[axis] = d;
+              starts.push_back(e->T_world_camera * se3::Exp(xi));
+            }
+          for (int axis = 3; axis < 5; ++axis)
+            for (double d : {-kTurnRad, kTurnRad}) {
+              Vec6 xi = Vec6::Zero();
+              xi[axis] = d;
+              starts.push_back(e->T_world_camera * se3::Exp(xi));
+            }
+        }
+        for (const Pose& start : starts) {
+          const tracking::TrackResult rc = track(start);
+          const Verdict vc = Verify(rc, in, true);
+          if (vc.why.empty() && (!verdict.why.empty() || vc.score < verdict.score)) {
+            r = rc;
+            verdict = vc;
+            rep.reloc_entry = int(e - reloc_.entries().data());
+          }
+        }
+      }
+    }
+    rep.tracking = r;
+    rep.quality = Quality(r, verdict);
+    if (!verdict.why.empty()) {
+      rep.state = FrameState::kLost;
+      rep.tracking.lost = true;
+      if (rep.tracking.why.empty()) rep.tracking.why = verdict.why;
+      rep.why = rep.tracking.why;
+      rep.quality = 0;
+      recovering_ = true;
+      confirmed_ = 0;
+      ++lost_run_;
+    } else {
+      accepted = true;
+      lost_run_ = 0;
+      previous_pose_ = rep.reloc_entry >= 0 ? r.T_world_camera : pose_;
+      pose_ = r.T_world_camera;
+      if (recovering_ && ++confirmed_ < o_.tracker.confirm_frames) {
+        rep.state = rep.reloc_entry >= 0 ? FrameState::kRelocalised : FrameState::kConfirming;
+        rep.why = "confirming the pose after a loss (" + std::to_string(confirmed_) + " of " +
+                  std::to_string(o_.tracker.confirm_frames) + " frames)";
+      } else {
+        rep.state = rep.reloc_entry >= 0 ? FrameState::kRelocalised : FrameState::kTracked;
+        recovering_ = false;
+        confirmed_ = 0;
+        fuse = true;
+      }
     }
   }
   rep.T_world_camera = pose_;
   const auto t3 = now();
-  // 4. Exposure compensation against the model as seen from the last pose.
+  // 4. Exposure compensation against the model (estimated while verifying the pose).
   double t_ratio = 1;
-  if (b.HasRender() && !rep.tracking.lost) {
-    const auto est = b.EstimateExposure(pose_);
-    rep.exposure_samples = est.samples;
-    if (est.valid) t_ratio = est.ratio;
-  }
+  if (accepted && verdict.exposure.valid) t_ratio = verdict.exposure.ratio;
+  rep.exposure_samples = verdict.exposure.samples;
   rep.exposure_ratio = t_ratio;
-  if (in.exposure_ms) {
-    if (index_ == 0) first_exposure_ms_ = in.exposure_ms;
-    if (first_exposure_ms_) rep.exposure_ratio_reported = *first_exposure_ms_ / *in.exposure_ms;
-  }
+  if (in.exposure_ms && first_exposure_ms_) rep.exposure_ratio_reported = *first_exposure_ms_ / *in.exposure_ms;
   const auto t4 = now();
-  // 5. Integrate (lost frames are not fused).
-  if (!rep.tracking.lost) {
+  // 5. Integrate (only verified, confirmed poses are fused).
+  if (fuse) {
     b.Integrate(pose_, float(t_ratio));
     rep.fused = true;
+    if (rep.tracking.iterations > 0) {
+      if (UsesIcp(o_.tracker.kind)) Push(icp_residuals_, rep.tracking.rms_icp_m);
+      if (UsesPhoto(o_.tracker.kind)) Push(photo_residuals_, rep.tracking.rms_photo);
+    }
+    if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
+    if (o_.reloc.enabled && reloc_.Wants(pose_))
+      reloc_.Add({rep.index, pose_, MakeRelocCode(in.color, in.depth_m, inverse_), Thumbnail(in.color)});
   }
   rep.allocated_bricks = b.AllocatedBricks();
   if (!full_reported_ && rep.fused && b.VolumeFull()) {
@@ -151,12 +373,12 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     full_reported_ = true;
   }
   const auto t5 = now();
-  // 6. Ray cast the model from the new pose, and the next frame's reference: the ray cast
-  // (frame to model) or this frame where it was tracked (frame to frame).
-  if (rep.fused || !b.HasRender()) b.Raycast(pose_);
+  // 6. Ray cast the model from the pose, and the next frame's reference: the ray cast (frame
+  // to model) or this frame where its pose was accepted (frame to frame).
+  if (rep.fused || accepted || searched || !b.HasRender()) b.Raycast(pose_);
   if (reference_from_model_) {
     b.ReferenceFromRender();
-  } else if (!rep.tracking.lost || !b.HasReference()) {
+  } else if (accepted || !b.HasReference()) {
     b.ReferenceFromLive(pose_);
     reference_color_ = in.color.Clone();
     reference_depth_ = in.depth_m.Clone();
@@ -173,6 +395,14 @@ ResumePoint Pipeline::resume_point() const {
   p.pose = pose_;
   p.previous_pose = previous_pose_;
   p.first_exposure_ms = first_exposure_ms_;
+  p.anchored = anchored_;
+  p.recovering = recovering_;
+  p.confirmed = confirmed_;
+  p.residuals = icp_residuals_;
+  p.photo_residuals = photo_residuals_;
+  p.lost_run = lost_run_;
+  p.exposure_drifts = exposure_drifts_;
+  p.reloc = reloc_.entries();
   if (!reference_from_model_) {
     p.reference_color = reference_color_.Clone();
     p.reference_depth = reference_depth_.Clone();
@@ -204,6 +434,14 @@ void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
   index_ = p.frames;
   first_exposure_ms_ = p.first_exposure_ms;
   full_reported_ = model.full();
+  anchored_ = p.anchored;
+  recovering_ = p.recovering;
+  confirmed_ = p.confirmed;
+  icp_residuals_ = p.residuals;
+  photo_residuals_ = p.photo_residuals;
+  lost_run_ = p.lost_run;
+  exposure_drifts_ = p.exposure_drifts;
+  reloc_.Restore(p.reloc);
   if (p.frames == 0) return;
   // The state the last Process() left: the ray cast from the last pose, and the reference.
   if (model.allocated_bricks() > 0) b.Raycast(pose_);

@@ -17,6 +17,7 @@
 #include "mesh/mesh.h"
 #include "pipeline/backend.h"
 #include "pipeline/options.h"
+#include "pipeline/relocaliser.h"
 #include "radiometry/pcf.h"
 #include "radiometry/sensor.h"
 #include "tracking/tracking.h"
@@ -39,8 +40,27 @@ struct StageTimes {
   StageTimes operator/(double n) const;
 };
 
+// What became of a frame's pose.
+enum class FrameState {
+  kWaiting,      // no frame has anchored the model yet, nor could this one (too little depth)
+  kTracked,      // tracked and verified: fused
+  kLost,         // no pose that verifies: not fused
+  kConfirming,   // a pose that verifies after a loss, not yet confirmed by enough frames: not fused
+  kRelocalised,  // found again from an earlier view of the scan (confirmed before it is fused)
+};
+const char* FrameStateName(FrameState s);  // "waiting", "tracked", "lost", "confirming", "relocalised"
+
 struct FrameReport {
   int index = 0;
+  FrameState state = FrameState::kTracked;
+  // Tracking quality, 0..1, before the pose is judged: how close the frame came to the limits
+  // (matched share, residual against the scan's usual, robust inliers, motion). Below about
+  // 0.5 the operator should slow down; 0 when lost.
+  double quality = 0;
+  std::string why;  // why the frame was not fused (empty when it was)
+  double depth_share = 0;  // share of pixels with depth (every 4th pixel in x and y)
+  int reloc_entry = -1;    // the relocalisation entry whose view found the pose, or -1
+  int nearest_entry = -1;  // while lost: the entry whose view looks most like this frame (or -1)
   double timestamp = 0;
   Pose T_world_camera = Pose::Identity();
   tracking::TrackResult tracking;
@@ -79,6 +99,15 @@ struct ResumePoint {
   // (empty when the scan tracks against the model, whose ray cast is the reference).
   ColorImage reference_color;
   DepthImage reference_depth;
+  // Pose verification and recovery: whether a frame anchored the model, whether the scan is
+  // recovering from a loss (and how many frames have verified since), the recent residuals
+  // and exposure drifts the next poses are judged against, and the relocalisation views.
+  bool anchored = false;
+  bool recovering = false;
+  int confirmed = 0;
+  std::vector<double> residuals, photo_residuals, exposure_drifts;  // residuals: point-to-surface
+  int lost_run = 0;  // frames since the last accepted pose
+  std::vector<RelocEntry> reloc;
 };
 
 // The per-frame system. Owns the backend (the frame's images, the model and the tracking
@@ -137,6 +166,27 @@ class Pipeline {
   bool full_reported_ = false;
   ColorImage reference_color_;  // frame to frame: the last tracked frame (resume points)
   DepthImage reference_depth_;
+  // Verification and recovery (see ResumePoint).
+  bool anchored_ = false;
+  bool recovering_ = false;
+  int confirmed_ = 0;
+  std::vector<double> icp_residuals_, photo_residuals_, exposure_drifts_;  // of the last fused frames, newest last
+  int lost_run_ = 0;  // frames since the last accepted pose
+  Relocaliser reloc_;
+
+  struct Verdict {
+    std::string why;  // empty: verified
+    double score = 0; // residual over the scan's usual (lower is better)
+    double drift = 0; // log(estimated / reported exposure ratio), 0 where not known
+    double residual_ratio = 0;  // the worst term's residual over its usual (0: no history)
+    exposure::ExposureEstimate exposure;
+  };
+  Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering);
+  double Quality(const tracking::TrackResult& r, const Verdict& v) const;
+  static double Median(std::vector<double> v);
+
+ public:
+  const Relocaliser& relocaliser() const { return reloc_; }
 };
 
 }  // namespace hdrf::pipeline

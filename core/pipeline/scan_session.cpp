@@ -42,6 +42,21 @@ void ScanSession::Resume(const volume::Volume& model, const ResumePoint& point, 
   }
 }
 
+int ScanSession::count(FrameState s) const {
+  return int(std::count_if(reports_.begin(), reports_.end(), [&](const FrameReport& r) { return r.state == s; }));
+}
+
+int ScanSession::fused() const {
+  return int(std::count_if(reports_.begin(), reports_.end(), [](const FrameReport& r) { return r.fused; }));
+}
+
+int ScanSession::relocalisations() const {
+  int n = 0;
+  for (std::size_t i = 1; i < reports_.size(); ++i)
+    n += reports_[i].state == FrameState::kRelocalised && reports_[i - 1].state == FrameState::kLost;
+  return n;
+}
+
 std::vector<Pose> ScanSession::poses() const {
   std::vector<Pose> p;
   p.reserve(reports_.size());

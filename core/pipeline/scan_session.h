@@ -34,7 +34,12 @@ class ScanSession {
   const std::vector<Keyframe>& keyframes() const { return keyframes_.keyframes(); }
   const SensorInfo& sensor() const { return sensor_; }
   int frames() const { return int(reports_.size()); }
-  int lost() const { return lost_; }
+  int lost() const { return lost_; }  // frames with no pose (waiting to anchor included)
+  // Frames by what became of them (FrameState), and how often the scan was found again from
+  // an earlier view after a loss.
+  int count(FrameState s) const;
+  int relocalisations() const;
+  int fused() const;
   // One pose per processed frame (a lost frame keeps the last good pose), with timestamps.
   std::vector<Pose> poses() const;
   std::vector<double> timestamps() const;

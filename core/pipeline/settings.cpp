@@ -15,6 +15,7 @@ namespace hdrf::pipeline {
 void PipelineOptions::Check() const {
   volume.Check();
   tracker.Check();
+  reloc.Check();
   exposure.Check();
   nr.Check();
   depth.Check();
@@ -259,6 +260,35 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Real("tracker.max_jump_deg", 1e-3, 180, "deg",
                    "A frame turning farther from its prediction is lost",
                    HDRF_FIELD(tracker.max_jump_deg)));
+  v.push_back(Expert(Real("tracker.verify_growth", 1, 1000, "",
+                          "A pose whose residual exceeds this many times the scan's recent median is not fused",
+                          HDRF_FIELD(tracker.verify_growth))));
+  v.push_back(Expert(Real("tracker.verify_floor_m", 0, 1, "m",
+                          "Point-to-surface residuals below this always verify",
+                          HDRF_FIELD(tracker.verify_floor_m))));
+  v.push_back(Expert(Real("tracker.verify_floor_photo", 0, 10, "",
+                          "Normalized-radiance residuals below this always verify (no ICP)",
+                          HDRF_FIELD(tracker.verify_floor_photo))));
+  v.push_back(Expert(Real("tracker.min_robust_inliers", 0, 1, "",
+                          "A pose whose terms' mean robust weight is lower is not fused",
+                          HDRF_FIELD(tracker.min_robust_inliers))));
+  v.push_back(Expert(Real("tracker.max_exposure_drift", 1e-3, 100, "",
+                          "A pose whose exposure estimate departs more from the sensor's (relative) is not fused",
+                          HDRF_FIELD(tracker.max_exposure_drift))));
+  v.push_back(Int("tracker.confirm_frames", 1, 1000, "frames",
+                  "After a loss, frames that must verify in a row before fusion resumes",
+                  HDRF_FIELD(tracker.confirm_frames)));
+  v.push_back(Real("tracker.min_anchor_depth", 0, 1, "",
+                   "The first frame with this share of pixels with depth anchors the model",
+                   HDRF_FIELD(tracker.min_anchor_depth)));
+  v.push_back(Bool("reloc.enabled", "When lost, look for the pose among the scan's earlier views",
+                   HDRF_FIELD(reloc.enabled)));
+  v.push_back(Expert(Int("reloc.candidates", 1, 32, "", "Earlier views tried per lost frame",
+                         HDRF_FIELD(reloc.candidates))));
+  v.push_back(Expert(Real("reloc.min_translation_m", 1e-3, 100, "m",
+                          "A view is kept for relocalisation after this much motion", HDRF_FIELD(reloc.min_translation_m))));
+  v.push_back(Expert(Real("reloc.min_rotation_deg", 1e-3, 180, "deg",
+                          "A view is kept for relocalisation after this much turning", HDRF_FIELD(reloc.min_rotation_deg))));
   // Exposure compensation.
   v.push_back(Expert(Int("exposure.stride", 1, 16, "px",
                          "Every stride-th pixel in x and y is an exposure sample",

@@ -45,6 +45,16 @@ void TrackerOptions::Check() const {
   if (!(max_condition > 1)) throw SettingError("tracker.max_condition", "must be > 1");
   if (!(max_jump_m > 0)) throw SettingError("tracker.max_jump_m", "must be > 0");
   if (!(max_jump_deg > 0 && max_jump_deg <= 180)) throw SettingError("tracker.max_jump_deg", "must be in (0, 180]");
+  if (!(verify_growth >= 1 && verify_growth <= 1000)) throw SettingError("tracker.verify_growth", "must be in [1, 1000]");
+  if (!(verify_floor_m >= 0 && verify_floor_m <= 1)) throw SettingError("tracker.verify_floor_m", "must be in [0, 1] m");
+  if (!(verify_floor_photo >= 0 && verify_floor_photo <= 10))
+    throw SettingError("tracker.verify_floor_photo", "must be in [0, 10]");
+  if (!(min_robust_inliers >= 0 && min_robust_inliers <= 1))
+    throw SettingError("tracker.min_robust_inliers", "must be in [0, 1]");
+  if (!(max_exposure_drift > 0 && max_exposure_drift <= 100))
+    throw SettingError("tracker.max_exposure_drift", "must be in (0, 100]");
+  if (confirm_frames < 1 || confirm_frames > 1000) throw SettingError("tracker.confirm_frames", "must be 1 to 1000");
+  if (!(min_anchor_depth >= 0 && min_anchor_depth <= 1)) throw SettingError("tracker.min_anchor_depth", "must be in [0, 1]");
 }
 
 namespace {
@@ -214,6 +224,8 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
   res.T_world_camera = T;
   res.rms_icp_m = last.icp_w() > 0 ? std::sqrt(last.icp_r2() / last.icp_w()) : 0;
   res.rms_photo = last.photo_w() > 0 ? std::sqrt(last.photo_r2() / last.photo_w()) : 0;
+  res.icp_inliers = last.icp_n() > 0 ? last.icp_w() / last.icp_n() : 0;
+  res.photo_inliers = last.photo_n() > 0 ? last.photo_w() / last.photo_n() : 0;
   // Health, at the finest level.
   const long matched = long(std::max(last.icp_n(), last.photo_n()));
   res.inlier_share = live_valid > 0 ? double(matched) / double(live_valid) : 0;

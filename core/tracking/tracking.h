@@ -42,6 +42,19 @@ struct TrackerOptions {
   float min_inlier_share = 0.2f;
   double max_condition = 1e8;
   float max_jump_m = 0.25f, max_jump_deg = 25.f;
+  // Verification (the pipeline's, after tracking): a pose is fused only when its residual
+  // (point-to-surface where ICP takes part, else normalized radiance) is within
+  // verify_growth times the scan's recent median, or below the floor; when its terms' mean
+  // robust weight is at least min_robust_inliers; and when its exposure estimate keeps to
+  // the sensor's reported exposure as it did (within max_exposure_drift, relative).
+  float verify_growth = 3.f;
+  float verify_floor_m = 0.004f, verify_floor_photo = 0.05f;
+  float min_robust_inliers = 0.5f;
+  float max_exposure_drift = 0.35f;
+  // After any lost frame, fusion resumes only once this many frames in a row verify.
+  int confirm_frames = 3;
+  // The model is anchored by the first frame with at least this share of pixels with depth.
+  float min_anchor_depth = 0.25f;
   void Check() const;
 };
 
@@ -95,6 +108,9 @@ struct TrackResult {
   double rms_icp_m = 0;        // robust-weighted RMS residuals at the finest level
   double rms_photo = 0;
   double inlier_share = 0;     // live pixels with a correspondence, finest level
+  // Mean robust (Huber) weight of the matched terms at the finest level, 0..1: 1 when every
+  // residual is within the kernel's threshold; a pose that only half fits pulls it down.
+  double icp_inliers = 0, photo_inliers = 0;
   double condition = 0;        // of J^T J at the finest level
   int iterations = 0;
   bool lost = false;

@@ -2,6 +2,7 @@
 // sequence of the built-in room (seed 1), `scan` it with each tracker, `eval` the result.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -9,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "io/image_io.h"
 #include "io/ply.h"
 #include "support/test_support.h"
 
@@ -144,6 +146,36 @@ TEST(ScanErrors, MissingCalibrationBadSettingsAndOptionFiles) {
   EXPECT_NE(r.output.find("saved"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "o4" / "mesh.ply"));
   EXPECT_EQ(test::ReadText(dir / "o4" / "trajectory.txt").find("1.133333"), std::string::npos);
+}
+
+// Blank first depth frames: the scan starts at the first frame with depth; a sequence with
+// no depth at all fails, saying why, and writes nothing.
+TEST(ScanErrors, TheFirstFrameWithDepthAnchorsTheModel) {
+  test::TempDir dir;
+  const std::string seq = (dir / "seq").string();
+  ASSERT_EQ(RunCli("simulate --out " + seq + " --frames 12 --size 80x60").status, 0);
+  std::vector<fs::path> depth;
+  for (const auto& e : fs::directory_iterator(dir / "seq" / "depth")) depth.push_back(e.path());
+  std::sort(depth.begin(), depth.end());
+  ASSERT_EQ(depth.size(), 12u);
+  const DepthRawImage zero(80, 60);
+  for (int i = 0; i < 3; ++i) io::WriteDepthPng(depth[std::size_t(i)], zero);
+  RunResult r = RunCli("scan " + seq + " --out " + (dir / "o1").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("frame 0: waiting (waiting for a frame to anchor the model: 0 % of its pixels have depth"),
+            std::string::npos) << r.output;
+  const nlohmann::json rep = ReadJson(dir / "o1" / "report.json");
+  EXPECT_EQ(rep["waiting_frames"].get<int>(), 3);
+  EXPECT_EQ(rep["fused_frames"].get<int>(), 9);
+  EXPECT_EQ(rep["frames_detail"][0]["state"], "waiting");
+  EXPECT_EQ(rep["frames_detail"][3]["state"], "tracked");
+  EXPECT_GT(rep["mesh"]["vertices"].get<int>(), 1000);
+  for (const auto& f : depth) io::WriteDepthPng(f, zero);
+  r = RunCli("scan " + seq + " --out " + (dir / "o2").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("none of the 12 frames could anchor the model"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tracker.min_anchor_depth"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "o2" / "report.json"));
 }
 
 }  // namespace

@@ -33,6 +33,8 @@
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
 #include "io/project.h"
+#include "io/sequence.h"
+#include "sim/synthetic_source.h"
 #include "support/test_support.h"
 
 #ifndef HDRF_STUDIO_BINARY
@@ -318,6 +320,48 @@ TEST(StudioWindow, ASourceErrorShowsAMessage) {
   MainWindow w(o);
   w.show();
   QTRY_VERIFY_WITH_TIMEOUT(w.error_text().contains("/nonexistent/sequence-folder"), 20000);
+}
+
+// The camera covered midway: the status says the frames are lost and why, and shows the
+// earlier view of the scan that the frame looks most like, where to point the camera.
+TEST(StudioWindow, ALostScanSaysSoAndShowsWhereToPointTheCamera) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  QTemporaryDir dir;
+  const std::filesystem::path seq = std::filesystem::path(dir.path().toStdString()) / "covered";
+  {
+    sim::SimOptions so;
+    so.frames = 40;
+    so.width = 160;
+    so.height = 120;
+    sim::SyntheticSource src(so);
+    io::SequenceWriter writer(seq, src.sensor());
+    while (!src.done()) {
+      sim::SimFrame f = src.Next();
+      if (f.index >= 25) {  // covered: black, no depth, from frame 25 on
+        for (std::size_t k = 0; k < f.color.size(); ++k) f.color[k] = {0, 0, 0};
+        for (std::size_t k = 0; k < f.depth.size(); ++k) f.depth[k] = 0;
+      }
+      writer.Add(f.timestamp, f.color, &f.depth, f.exposure_ms, f.T_world_camera, nullptr);
+    }
+  }
+  StudioOptions o;
+  o.source = QString::fromStdString(seq.string());
+  o.autostart = true;
+  MainWindow w(o);
+  w.resize(1400, 900);
+  w.show();
+  QTRY_VERIFY_WITH_TIMEOUT(w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30, 120000);
+  EXPECT_TRUE(w.health_text().contains("TRACKING LOST")) << w.health_text().toStdString();
+  EXPECT_TRUE(w.health_text().contains("no correspondences")) << w.health_text().toStdString();
+  auto* hint = w.findChild<QLabel*>("reloc_hint");
+  ASSERT_NE(hint, nullptr);
+  EXPECT_TRUE(hint->isVisible());
+  ASSERT_FALSE(hint->pixmap().isNull());
+  EXPECT_GE(hint->pixmap().width(), 120);
+  EXPECT_FALSE(w.latest()->reloc_hint.empty());
+  EXPECT_LT(w.latest()->reloc_hint_frame, 25);
+  if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) w.SaveScreenshot(QString(shots) + "/studio_lost.png");
 }
 
 // The acceptance run: the real program, 60 frames of the synthetic sensor, a
