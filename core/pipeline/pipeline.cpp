@@ -287,7 +287,16 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       // shifted along and turned about the camera's axes, which reach a camera beyond the
       // tracker's reach of that view. Their poses are judged as strictly as while recovering.
       const std::vector<const RelocEntry*> candidates = reloc_.Candidates(code);
-      if (!candidates.empty()) rep.nearest_entry = int(candidates[0] - reloc_.entries().data());
+      if (!candidates.empty()) {
+        rep.nearest_entry = int(candidates[0] - reloc_.entries().data());
+      } else {  // nothing to compare (a covered camera): the view nearest the last known pose
+        double best = 1e30;
+        for (std::size_t k = 0; k < reloc_.entries().size(); ++k) {
+          const Pose d = reloc_.entries()[k].T_world_camera.inverse() * pose_;
+          const double cost = se3::TranslationNorm(d) + 0.5 * se3::RotationAngle(d);  // 0.5 m per radian
+          if (cost < best) best = cost, rep.nearest_entry = int(k);
+        }
+      }
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const RelocEntry* e = candidates[c];
         b.Raycast(e->T_world_camera);

@@ -60,7 +60,9 @@ struct FrameReport {
   std::string why;  // why the frame was not fused (empty when it was)
   double depth_share = 0;  // share of pixels with depth (every 4th pixel in x and y)
   int reloc_entry = -1;    // the relocalisation entry whose view found the pose, or -1
-  int nearest_entry = -1;  // while lost: the entry whose view looks most like this frame (or -1)
+  // While lost: the entry whose view looks most like this frame, or where the frame shows
+  // nothing to compare (a covered camera) the one nearest the last known pose; else -1.
+  int nearest_entry = -1;
   double timestamp = 0;
   Pose T_world_camera = Pose::Identity();
   tracking::TrackResult tracking;
