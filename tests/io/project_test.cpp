@@ -2,6 +2,8 @@
 // truncated and newer files are refused naming the problem; a failed save keeps the earlier one.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <fstream>
 
@@ -67,7 +69,26 @@ Scan ScanFrames(const std::vector<sim::SimFrame>& frames, const pipeline::Pipeli
       const io::Project p = io::LoadProject(file);
       EXPECT_EQ(p.resume.frames, split);
       EXPECT_EQ(p.model.allocated_bricks(), s->pipeline().volume_stats().allocated_bricks);
+      // The verification's history and the relocalisation views come back as they were.
+      const pipeline::ResumePoint rp = s->pipeline().resume_point();
+      EXPECT_EQ(p.resume.anchored, rp.anchored);
+      EXPECT_EQ(p.resume.residuals, rp.residuals);
+      EXPECT_EQ(p.resume.photo_residuals, rp.photo_residuals);
+      EXPECT_EQ(p.resume.exposure_drifts, rp.exposure_drifts);
+      EXPECT_FALSE(rp.reloc.empty());
+      EXPECT_EQ(p.resume.reloc.size(), rp.reloc.size());
+      for (std::size_t k = 0; k < std::min(p.resume.reloc.size(), rp.reloc.size()); ++k) {
+        const pipeline::RelocEntry &a = p.resume.reloc[k], &b = rp.reloc[k];
+        EXPECT_EQ(a.frame, b.frame);
+        EXPECT_LT((a.T_world_camera.matrix() - b.T_world_camera.matrix()).norm(), 1e-12);
+        EXPECT_EQ(a.code.depth, b.code.depth);
+        EXPECT_EQ(a.code.shade, b.code.shade);
+        EXPECT_EQ(a.code.lit, b.code.lit);
+        ASSERT_EQ(a.thumbnail.size(), b.thumbnail.size());
+        for (std::size_t j = 0; j < a.thumbnail.size(); ++j) ASSERT_EQ(a.thumbnail[j], b.thumbnail[j]) << k;
+      }
       s = io::ResumeSession(p);
+      EXPECT_EQ(s->pipeline().relocaliser().entries().size(), rp.reloc.size());
     }
     s->Process(test::AsInput(frames[std::size_t(i)]));
   }
