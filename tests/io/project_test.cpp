@@ -84,8 +84,10 @@ Scan ScanFrames(const std::vector<sim::SimFrame>& frames, const pipeline::Pipeli
         EXPECT_EQ(a.code.depth, b.code.depth);
         EXPECT_EQ(a.code.shade, b.code.shade);
         EXPECT_EQ(a.code.lit, b.code.lit);
-        ASSERT_EQ(a.thumbnail.size(), b.thumbnail.size());
-        for (std::size_t j = 0; j < a.thumbnail.size(); ++j) ASSERT_EQ(a.thumbnail[j], b.thumbnail[j]) << k;
+        EXPECT_EQ(a.thumbnail.size(), b.thumbnail.size());
+        std::size_t differ = 0;
+        for (std::size_t j = 0; j < std::min(a.thumbnail.size(), b.thumbnail.size()); ++j) differ += !(a.thumbnail[j] == b.thumbnail[j]);
+        EXPECT_EQ(differ, 0u) << "thumbnail " << k;
       }
       s = io::ResumeSession(p);
       EXPECT_EQ(s->pipeline().relocaliser().entries().size(), rp.reloc.size());
