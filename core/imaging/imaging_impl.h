@@ -42,7 +42,7 @@ struct BilateralTables {
 };
 HDRF_HD float BilateralPixel(ImageView<const float> d, const BilateralTables& t, int x, int y) {
   const float c = d(x, y);
-  if (!(c > 0.f)) return 0.f;
+  if (!(c > 0.f && c <= 3.0e38f)) return 0.f;  // none, or not finite: no depth
   const int r = t.radius, side = 2 * r + 1;
   float sw = 0.f, sv = 0.f;
   for (int dy = -r; dy <= r; ++dy) {
@@ -52,9 +52,11 @@ HDRF_HD float BilateralPixel(ImageView<const float> d, const BilateralTables& t,
       const int xx = x + dx;
       if (xx < 0 || xx >= d.width) continue;
       const float v = d(xx, yy);
-      if (!(v > 0.f)) continue;
-      int bin = int(fabsf(v - c) * t.to_bin);
-      bin = bin < kBilateralBins ? bin : kBilateralBins;
+      if (!(v > 0.f && v <= 3.0e38f)) continue;
+      // The bin in float first: a depth difference of kilometres (a wrong depth scale) or an
+      // infinite one would overflow an int conversion and index outside the table.
+      const float fb = fabsf(v - c) * t.to_bin;
+      const int bin = fb < float(kBilateralBins) ? int(fb) : kBilateralBins;
       const float wgt = t.spatial[(dy + r) * side + dx + r] * t.range[bin];
       sw += wgt;
       sv += wgt * v;

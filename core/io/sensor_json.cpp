@@ -71,6 +71,13 @@ SensorInfo SensorFromJson(const std::filesystem::path& file, const json& j) {
   s.camera.cy = float(Number(file, Require(file, cam, "cy", "camera."), "camera.cy"));
   const json& depth = Require(file, j, "depth", "");
   s.depth_scale = Positive(file, Require(file, depth, "scale", "depth."), "depth.scale");
+  // Raw depth units per metre: 1000 for millimetres, 5000 for TUM-style recordings. Below 1
+  // a unit would be longer than a metre (a 16-bit image would reach beyond 65 km): almost
+  // certainly metres per unit written where units per metre are meant.
+  if (s.depth_scale < 1 || s.depth_scale > 1e6)
+    throw InputError(file, "'depth.scale' is " + json(s.depth_scale).dump() +
+                               ": it is raw depth units per metre (1000 for millimetres, 5000 for TUM-style "
+                               "depth), between 1 and 1000000");
 
   if (j.contains("response")) {
     const json& inv = Require(file, j["response"], "inverse", "response.");

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +18,21 @@ namespace {
 using test::Frames;
 using test::Median;
 using test::Metres;
+
+// Depths of kilometres beside metres (a wrong depth scale), and infinite ones: the range
+// weight's bin stays in its table, neighbours that far apart get the last bin's weight.
+TEST(Imaging, BilateralFilterTakesAbsurdDepthsWithoutLeavingItsTable) {
+  DepthImage d(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) d(x, y) = (x + y) % 2 ? 3.0e6f : 1.f;
+  d(3, 3) = std::numeric_limits<float>::infinity();
+  const DepthImage f = imaging::BilateralDepth(d);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float want = x == 3 && y == 3 ? 0.f : (x + y) % 2 ? 3.0e6f : 1.f;  // infinite: no depth
+      EXPECT_NEAR(f(x, y), want, 1e-3 * want + 1e-6) << x << "," << y;
+    }
+}
 
 TEST(Imaging, BilateralFilterSmoothsNoiseAndKeepsDepthEdges) {
   // A 1 m / 2 m step with 1 cm noise and a hole.

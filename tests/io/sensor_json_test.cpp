@@ -139,6 +139,13 @@ TEST(SensorJson, MissingRequiredKeysNamed) {
   WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": -1, "fy": 1,
                                     "cx": 1, "cy": 1}, "depth": {"scale": 1}})");
   ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"camera.fx", "positive"});
+  // Metres per unit written where units per metre are meant (depths of kilometres).
+  for (const char* scale : {"0.001", "0.01", "1e-30", "1e9"}) {
+    WriteText(dir / "sensor.json", std::string(R"({"camera": {"width": 640, "height": 480, "fx": 1, "fy": 1,
+                                    "cx": 1, "cy": 1}, "depth": {"scale": )") + scale + "}}");
+    ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
+                          {"sensor.json", "'depth.scale'", "units per metre"});
+  }
 }
 
 TEST(SensorJson, NonMonotonicResponseRejected) {
