@@ -238,6 +238,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   b.BuildLive();
   bool fuse = false, accepted = false, searched = false;
   Verdict verdict;
+  RelocCode code;  // the frame's relocalisation code, made once where it is needed
   if (!anchored_) {
     anchored_ = true;
     previous_pose_ = pose_;
@@ -282,7 +283,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     }
     if ((recovering_ || !verdict.why.empty()) && o_.reloc.enabled && reference_from_model_ && !reloc_.entries().empty()) {
       searched = true;
-      const RelocCode code = MakeRelocCode(in.color, in.depth_m, inverse_);
+      code = MakeRelocCode(in.color, in.depth_m, inverse_);
       // Each candidate view is tracked from its own pose; the nearest one also from poses
       // shifted along and turned about the camera's axes, which reach a camera beyond the
       // tracker's reach of that view. Their poses are judged as strictly as while recovering.
@@ -374,7 +375,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     }
     if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
     if (o_.reloc.enabled && reloc_.Wants(pose_))
-      reloc_.Add({rep.index, pose_, MakeRelocCode(in.color, in.depth_m, inverse_), Thumbnail(in.color)});
+      reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),
+                  Thumbnail(in.color)});
   }
   rep.allocated_bricks = b.AllocatedBricks();
   if (!full_reported_ && rep.fused && b.VolumeFull()) {
