@@ -27,6 +27,17 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a);
 // Throws SettingError naming --out or --peers where they cannot work.
 void CheckTrackingArgs(const TrackingExperimentArgs& a);
 
+// Tracking on a real 7-Scenes recording against its own poses, ours beside the peers
+// (real_tracking.cpp).
+struct RealTrackingArgs {
+  std::string data;           // a 7-Scenes folder: frames/, camera-intrinsics.txt
+  std::string out;            // results folder (required)
+  std::string work;           // the sequence everyone reads; "" = OUT/work
+  std::string peers_program;  // hdrfusion-peers; "" = no peers
+};
+int RunRealTracking(const RealTrackingArgs& a);
+void CheckRealTrackingArgs(const RealTrackingArgs& a);
+
 // Everything, then the index README.md of the results folder (paper.cpp).
 int RunPaper(const TrackingExperimentArgs& a, int pairs, const std::string& data_dir);
 

@@ -50,6 +50,14 @@ int main(int argc, char** argv) {
   AddTrackingOptions(tracking, *tracking_args);
   commands.push_back({tracking, [tracking_args] { return RunTrackingExperiment(*tracking_args); }});
 
+  auto real_args = std::make_shared<RealTrackingArgs>();
+  auto* real = app.add_subcommand("real", "Our trackers and the peers on a real 7-Scenes recording");
+  real->add_option("--data", real_args->data, "7-Scenes folder (frames/, camera-intrinsics.txt)")->required();
+  real->add_option("--out", real_args->out, "Results folder")->required();
+  real->add_option("--work", real_args->work, "Folder for the sequence every tracker reads (default: OUT/work)");
+  real->add_option("--peers", real_args->peers_program, "The hdrfusion-peers program to run on the same frames");
+  commands.push_back({real, [real_args] { return RunRealTracking(*real_args); }});
+
   auto radiance_frames = std::make_shared<int>(300);
   auto radiance_size = std::make_shared<std::string>("320x240");
   auto* radiance = app.add_subcommand("radiance", "Fused radiance against the truth; dynamic range");

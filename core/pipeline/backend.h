@@ -72,8 +72,9 @@ class Backend {
   // 3. Reads the filtered depth and the tracked image. Writes the live pyramid.
   virtual void BuildLive() = 0;
   // The tracker's normal equations of the live pyramid at a pose against the reference (at
-  // its own pose); pixels with depth in the live frame; pixels the reference offers.
-  virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_live) = 0;
+  // its own pose), with the tracker settings of this frame (its measured scales); pixels with
+  // depth in the live frame; pixels the reference offers.
+  virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_live, const tracking::TrackerOptions& t) = 0;
   virtual long LiveValid() = 0;
   virtual long ReferenceValid() = 0;
   // 4. Reads the radiance and the last ray cast. The exposure ratio of the live frame.

@@ -60,9 +60,9 @@ class CpuBackend final : public Backend {
                                o_.depth.max_normal_jump_m);
   }
 
-  tracking::GnSystem Accumulate(int level, const Pose& T_world_live) override {
+  tracking::GnSystem Accumulate(int level, const Pose& T_world_live, const tracking::TrackerOptions& t) override {
     return tracking::AccumulateCpu(reference_.levels[std::size_t(level)].view(), reference_.T_world_camera,
-                                   live_.levels[std::size_t(level)].view(), T_world_live, o_.tracker);
+                                   live_.levels[std::size_t(level)].view(), T_world_live, t);
   }
 
   long ReferenceValid() override {

@@ -125,9 +125,9 @@ class CudaBackend final : public Backend {
     }
   }
 
-  tracking::GnSystem Accumulate(int level, const Pose& T_world_live) override {
+  tracking::GnSystem Accumulate(int level, const Pose& T_world_live, const tracking::TrackerOptions& t) override {
     return sums_.Accumulate(ref_[std::size_t(level)]->view(), reference_pose_, live_[std::size_t(level)]->view(),
-                            T_world_live, o_.tracker);
+                            T_world_live, t);
   }
   long LiveValid() override { return sums_.CountLiveVertices(live_[0]->vertex.view()); }
   long ReferenceValid() override { return sums_.CountReferenceVertices(ref_[0]->vertex.view()); }

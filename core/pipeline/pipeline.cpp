@@ -189,6 +189,16 @@ double Pipeline::Quality(const tracking::TrackResult& r, const Verdict& v) const
   return std::min({share, robust, residual, motion});
 }
 
+tracking::TrackerOptions Pipeline::TrackerNow() const {
+  tracking::TrackerOptions t = o_.tracker;
+  if (!t.adaptive_scales) return t;
+  if (icp_residuals_.size() >= kMinHistory)
+    t.icp_sigma_m = float(std::max(double(t.icp_sigma_floor_m), Median(icp_residuals_)));
+  if (photo_residuals_.size() >= kMinHistory)
+    t.photo_sigma = float(std::max(double(t.photo_sigma_floor), Median(photo_residuals_)));
+  return t;
+}
+
 FrameReport Pipeline::Process(const FrameInput& in) {
   if (in.color.width() != cam_.width || in.color.height() != cam_.height ||
       in.depth_m.width() != cam_.width || in.depth_m.height() != cam_.height)
@@ -252,9 +262,10 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     // last inter-frame motion, repeated). The inlier share counts matches against what both
     // sides can offer: where the model covers only part of the view (an area not scanned
     // yet), matching all of that part is a success, not a loss.
+    const tracking::TrackerOptions topt = TrackerNow();
     auto track = [&](const Pose& from) {
-      return tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T); }, o_.tracker.levels,
-                             std::min(b.LiveValid(), b.ReferenceValid()), from, o_.tracker);
+      return tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T, topt); }, topt.levels,
+                             std::min(b.LiveValid(), b.ReferenceValid()), from, topt);
     };
     const Pose velocity = previous_pose_.inverse() * pose_;
     tracking::TrackResult r;

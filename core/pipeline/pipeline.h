@@ -185,6 +185,7 @@ class Pipeline {
   };
   Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering);
   double Quality(const tracking::TrackResult& r, const Verdict& v) const;
+  tracking::TrackerOptions TrackerNow() const;  // the settings, with measured scales
   static double Median(std::vector<double> v);
 
  public:

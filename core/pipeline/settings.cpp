@@ -239,6 +239,15 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Expert(Real("tracker.photo_sigma", 1e-6, 100, "",
                           "Expected scale of the normalized-radiance residual",
                           HDRF_FIELD(tracker.photo_sigma))));
+  v.push_back(Bool("tracker.adaptive_scales",
+                   "Weigh the tracker's terms by their measured residuals (after a few frames) instead of the scales above",
+                   HDRF_FIELD(tracker.adaptive_scales)));
+  v.push_back(Expert(Real("tracker.icp_sigma_floor_m", 1e-6, 10, "m",
+                          "Smallest point-to-plane scale the measured scales may take",
+                          HDRF_FIELD(tracker.icp_sigma_floor_m))));
+  v.push_back(Expert(Real("tracker.photo_sigma_floor", 1e-6, 100, "",
+                          "Smallest normalized-radiance scale the measured scales may take",
+                          HDRF_FIELD(tracker.photo_sigma_floor))));
   v.push_back(
       Expert(Real("tracker.huber_k", 1e-3, 100, "", "Huber threshold, in units of the scales above",
                   HDRF_FIELD(tracker.huber_k))));

@@ -34,6 +34,12 @@ struct TrackerOptions {
   // so that 1 cm of point-to-plane distance weighs as much as 0.25 of normalized radiance.
   float icp_sigma_m = 0.01f;
   float photo_sigma = 0.25f;
+  // Measured scales: once the scan has fused a few frames, each term's scale is the median
+  // of its recent residuals (never below the floors), so that the terms are combined by how
+  // well each actually fits this sensor (a recording whose colour and depth are not
+  // registered, say) rather than by the fixed guesses above.
+  bool adaptive_scales = true;
+  float icp_sigma_floor_m = 0.0005f, photo_sigma_floor = 0.02f;
   float huber_k = 1.345f;                 // Huber threshold, in units of the scales above
   float icp_max_dist_m = 0.10f;           // ICP association gates
   float icp_max_angle_deg = 35.f;
@@ -106,7 +112,7 @@ Reference MakeReference(const Image<Float3>& vertex_w, const Image<Float3>& norm
 struct TrackResult {
   Pose T_world_camera = Pose::Identity();
   double rms_icp_m = 0;        // robust-weighted RMS residuals at the finest level
-  double rms_photo = 0;
+  double rms_photo = 0;         // of the confidence-weighted normalized-radiance difference
   double inlier_share = 0;     // live pixels with a correspondence, finest level
   // Mean robust (Huber) weight of the matched terms at the finest level, 0..1: 1 when every
   // residual is within the kernel's threshold; a pose that only half fits pulls it down.

@@ -94,7 +94,7 @@ HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
 }
 
 // Photometric: reference pixel (world vertex, NR) warped into the live frame; residual
-// NR_ref - NR_live(u'), scaled by the live PCF.
+// NR_ref - NR_live(u'), scaled by the live PCF (the residual sums record it so scaled).
 struct PhotoArgs {
   ImageView<const Float3> ref_vertex;  // world frame; zero = none
   ImageView<const float> ref_intensity;
@@ -126,7 +126,9 @@ HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, GnSystem& acc) {
   const double s = double(wl / a.photo_sigma);
   const double J[6] = {gu * s, gv * s, dz * s, (qy * dz - qz * gv) * s, (qz * gu - qx * dz) * s,
                        (qx * gv - qy * gu) * s};
-  AddRobustTerm(acc, J, r, s, a.huber_k, 28);
+  // The residual as the solve weighs it (confidence times difference), so that its recorded
+  // scale is the one the measured scales must match.
+  AddRobustTerm(acc, J, r * double(wl), 1.0 / double(a.photo_sigma), a.huber_k, 28);
   return true;
 }
 

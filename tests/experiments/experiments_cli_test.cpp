@@ -202,3 +202,47 @@ TEST(Experiments, CalibrationSuiteMeasuresEveryMethodOnDorfCurves) {
 
 }  // namespace
 }  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// A real recording (7-Scenes "redkitchen", ../shared/data: auto exposure, colour and depth
+// not registered, no calibration), against the dataset's own poses: the photometric term
+// does not make HDRFusion's tracking worse than depth alone, and where hdrfusion-peers is
+// built, the default tracker is at least as accurate as Open3D's hybrid odometry on the same
+// frames, in the same run.
+TEST(Experiments, RealRecordingNrIcpIsAtLeastAsAccurateAsIcpAloneAndAsOpen3d) {
+  const auto data = test::SharedData("7scenes_redkitchen");
+  HDRF_SKIP_WITHOUT(data, "7scenes_redkitchen");
+  test::TempDir tmp;
+  const std::string out = (tmp / "results").string();
+  const bool peers = !std::string(HDRF_PEERS).empty();
+  const auto r = RunExperiments("real --data " + data.string() + " --out " + out +
+                                (peers ? " --peers " + std::string(HDRF_PEERS) : ""));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::printf("%s", r.output.c_str());
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/real.json"));
+  const auto& rows = j["trackers"];
+  EXPECT_EQ(j["frames"].get<int>(), 50);
+  const double both = Ate(rows, "nr+icp"), icp = Ate(rows, "icp"), nr = Ate(rows, "nr-f2m");
+  ASSERT_GE(both, 0);
+  ASSERT_GE(icp, 0);
+  ASSERT_GE(nr, 0);
+  EXPECT_LE(both, icp);
+  EXPECT_LT(both, 0.02);
+  if (peers) {
+    const double open3d = Ate(rows, "open3d");
+    ASSERT_GE(open3d, 0);
+    EXPECT_LE(both, open3d);
+  } else {
+    EXPECT_NE(r.output.find("peers not run"), std::string::npos) << r.output;
+  }
+  // A folder that is not a 7-Scenes recording is refused before anything is written.
+  const auto bad = RunExperiments("real --data " + (tmp / "none").string() + " --out " + (tmp / "o2").string());
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.output.find("frames/"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(tmp / "o2"));
+}
+
+}  // namespace
+}  // namespace hdrf

@@ -191,7 +191,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
     if (k > 0) {
       const Pose T = rc.T_world_camera;
       for (int l = 0; l < o.tracker.levels; ++l) {
-        const tracking::GnSystem ga = cpu.backend().Accumulate(l, T), gb = gpu.backend().Accumulate(l, T);
+        const tracking::GnSystem ga = cpu.backend().Accumulate(l, T, o.tracker), gb = gpu.backend().Accumulate(l, T, o.tracker);
         double worst = 0, scale = 1e-30;
         for (int i = 0; i < tracking::GnSystem::kSize; ++i) {
           scale = std::max(scale, std::abs(ga.v[i]));

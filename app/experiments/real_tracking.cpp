@@ -1,0 +1,233 @@
+// `hdrfusion-experiments real`: tracking on a real recording. The frames of a 7-Scenes
+// folder (frame-NNNNNN.color.png, .depth.png in millimetres, .pose.txt camera to world,
+// camera-intrinsics.txt) are written as a sequence in the TUM layout; our trackers (nr+icp,
+// icp, nr, frame to model, engine defaults, the sRGB curve since the sensor has no
+// calibration; nr+icp also with fixed instead of measured scales) and the peers (hdrfusion-peers) run on that folder in the same run, each
+// compared with the dataset's own poses. Writes real.md and real.json.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "cli/progress.h"
+#include "common/error.h"
+#include "eval/eval.h"
+#include "experiments.h"
+#include "io/image_io.h"
+#include "io/json_file.h"
+#include "io/source_spec.h"
+#include "io/text_table.h"
+#include "io/tum.h"
+#include "tracking_experiment.h"
+
+namespace hdrf::experiments {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string ShellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+Pose ReadPoseMatrix(const fs::path& file) {
+  std::ifstream in(file);
+  double m[16];
+  for (double& v : m)
+    if (!(in >> v)) throw InputError(file.string(), "needs 16 numbers (a 4x4 camera-to-world matrix)");
+  Pose p = Pose::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) p.matrix()(r, c) = m[4 * r + c];
+  return se3::Orthonormalized(p);
+}
+
+// fx fy cx cy from a 3x3 matrix file.
+std::array<double, 4> ReadIntrinsics(const fs::path& file) {
+  std::ifstream in(file);
+  double k[9];
+  for (double& v : k)
+    if (!(in >> v)) throw InputError(file.string(), "needs 9 numbers (the 3x3 camera matrix)");
+  if (!(k[0] > 0 && k[4] > 0)) throw InputError(file.string(), "focal lengths must be positive");
+  return {k[0], k[4], k[2], k[5]};
+}
+
+}  // namespace
+
+void CheckRealTrackingArgs(const RealTrackingArgs& a) {
+  if (a.out.empty()) throw SettingError("--out", "names the results folder and is required");
+  if (a.data.empty()) throw SettingError("--data", "names a 7-Scenes folder and is required");
+  if (!fs::is_directory(fs::path(a.data) / "frames"))
+    throw InputError(a.data, "has no frames/ folder (frame-NNNNNN.color.png, .depth.png, .pose.txt)");
+  if (!fs::exists(fs::path(a.data) / "camera-intrinsics.txt"))
+    throw InputError(a.data, "has no camera-intrinsics.txt");
+  if (!a.peers_program.empty() && !fs::exists(a.peers_program))
+    throw SettingError("--peers", "'" + a.peers_program + "' does not exist (hdrfusion-peers is built where "
+                                  "tools/install_deps.sh --peers installed OpenCV contrib and Open3D)");
+}
+
+int RunRealTracking(const RealTrackingArgs& a) {
+  CheckRealTrackingArgs(a);
+  const fs::path data = a.data, out = a.out;
+  // 1. The recording as a sequence folder (copies: every reader gets identical files).
+  std::map<int, std::string> stems;  // frame number -> "frame-NNNNNN"
+  const std::regex pat(R"(frame-(\d+)\.color\.png)");
+  for (const auto& e : fs::directory_iterator(data / "frames")) {
+    std::smatch m;
+    const std::string name = e.path().filename().string();
+    if (std::regex_match(name, m, pat)) stems[std::stoi(m[1])] = "frame-" + m[1].str();
+  }
+  if (stems.size() < 5) throw InputError((data / "frames").string(), "holds fewer than 5 colour frames");
+  const auto k = ReadIntrinsics(data / "camera-intrinsics.txt");
+  const fs::path work = a.work.empty() ? out / "work" : fs::path(a.work);
+  const fs::path seq = work / "sequence";
+  fs::remove_all(seq);
+  fs::create_directories(seq / "rgb");
+  fs::create_directories(seq / "depth");
+  std::string rgb, depth;
+  std::vector<io::TimedPose> gt;
+  for (const auto& [n, stem] : stems) {
+    for (const char* ext : {".depth.png", ".pose.txt"})
+      if (!fs::exists(data / "frames" / (stem + ext)))
+        throw InputError((data / "frames" / (stem + ext)).string(), "is missing (its colour frame is there)");
+    fs::copy_file(data / "frames" / (stem + ".color.png"), seq / "rgb" / (stem + ".png"));
+    fs::copy_file(data / "frames" / (stem + ".depth.png"), seq / "depth" / (stem + ".png"));
+    char t[32];
+    std::snprintf(t, sizeof t, "%.6f", n / 30.0);  // 7-Scenes: 30 frames/s
+    rgb += std::string(t) + " rgb/" + stem + ".png\n";
+    depth += std::string(t) + " depth/" + stem + ".png\n";
+    gt.push_back({n / 30.0, ReadPoseMatrix(data / "frames" / (stem + ".pose.txt"))});
+  }
+  const auto write = io::WriteFileAtomically;
+  write(seq / "rgb.txt", rgb);
+  write(seq / "depth.txt", depth);
+  io::WriteTrajectory(seq / "groundtruth.txt", gt);
+  {
+    const ColorImage probe = io::ReadColorImage(seq / "rgb" / (stems.begin()->second + ".png"));
+    json s = {{"camera", {{"width", probe.width()}, {"height", probe.height()}, {"fx", k[0]}, {"fy", k[1]}, {"cx", k[2]},
+                          {"cy", k[3]}}},
+              {"depth", {{"scale", 1000}}}};
+    write(seq / "sensor.json", s.dump(1) + "\n");
+  }
+  // 2. Our trackers, on the frames read back (no calibration: the sRGB curve).
+  auto source = io::OpenSource(seq.string(), "srgb");
+  const SensorInfo sensor = source->sensor();
+  std::vector<pipeline::FrameInput> frames;
+  {
+    pipeline::FrameInput f;
+    while (source->Next(f)) frames.push_back(std::move(f));
+  }
+  std::vector<Pose> truth;
+  const Pose T0inv = frames.at(0).T_world_camera_true.value().inverse();
+  for (const auto& f : frames) truth.push_back(T0inv * f.T_world_camera_true.value());
+  struct Row {
+    std::string id, label, kind;
+    std::vector<Pose> poses;
+    int lost = 0;
+    double seconds = 0;
+    std::string unavailable;
+  };
+  std::vector<Row> rows;
+  pipeline::PipelineOptions engine;
+  for (const auto& spec : ExperimentTrackers()) {
+    if (spec.baseline || !spec.frame_to_model) continue;  // ours: nr-f2m, icp, nr+icp
+    cli::Progress p("real: " + spec.id, int(frames.size()));
+    const TrackerRun run = RunTracker(spec, frames, sensor.camera, sensor, engine, [&](int) { p.Step(); });
+    p.Done();
+    rows.push_back({spec.id, spec.label, "ours", run.poses, run.lost, run.seconds, ""});
+    if (spec.kind == tracking::TrackerKind::kNrIcp) {  // the same with the fixed scales, for comparison
+      pipeline::PipelineOptions fixed = engine;
+      fixed.tracker.adaptive_scales = false;
+      cli::Progress pf("real: " + spec.id + " (fixed scales)", int(frames.size()));
+      const TrackerRun rf = RunTracker(spec, frames, sensor.camera, sensor, fixed, [&](int) { pf.Step(); });
+      pf.Done();
+      rows.push_back({spec.id + "-fixed-scales", spec.label + ", fixed scales (tracker.adaptive_scales false)",
+                      "ours", rf.poses, rf.lost, rf.seconds, ""});
+    }
+  }
+  // 3. The peers on the same folder, now.
+  if (a.peers_program.empty()) {
+    std::fprintf(stderr, "real: peers not run (--peers names the hdrfusion-peers program to run them)\n");
+  } else {
+    const fs::path pout = work / "peers";
+    fs::remove_all(pout);
+    const std::string cmd = ShellQuote(a.peers_program) + " " + ShellQuote(seq.string()) + " --out " +
+                            ShellQuote(pout.string()) + " --only open3d,opencv-rgbd,opencv-icp,opencv-rgbd-icp";
+    std::fprintf(stderr, "real: peers: %s\n", cmd.c_str());
+    const int rc = std::system(cmd.c_str());
+    if (rc != 0) {
+      rows.push_back({"peers", "", "peer", {}, 0, 0, "hdrfusion-peers failed (status " + std::to_string(rc) + ")"});
+    } else {
+      const json pj = io::ReadJsonFile(pout / "peers.json");
+      for (const auto& e : pj.at("peers")) {
+        Row r;
+        r.id = e.at("id").get<std::string>();
+        r.label = e.at("label").get<std::string>();
+        r.kind = "peer";
+        if (e.contains("unavailable")) {
+          r.unavailable = e.at("unavailable").get<std::string>();
+        } else {
+          for (const auto& tp : io::ReadTrajectory(pout / (r.id + ".txt"))) r.poses.push_back(tp.T_world_camera);
+          if (r.poses.size() != frames.size())
+            throw InputError((pout / (r.id + ".txt")).string(), "has " + std::to_string(r.poses.size()) +
+                                                                    " poses for " + std::to_string(frames.size()) +
+                                                                    " frames");
+          r.lost = e.at("failed").get<int>();
+          r.seconds = e.at("seconds").get<double>();
+        }
+        rows.push_back(std::move(r));
+      }
+    }
+  }
+  // 4. The table.
+  fs::create_directories(out);
+  json j = json::array();
+  std::string table =
+      "| tracker | kind | ATE RMSE (cm) | ATE max (cm) | RPE trans. (mm/frame) | RPE rot. (deg/frame) | lost | wall (s) |\n"
+      "|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const Row& r : rows) {
+    if (r.poses.empty()) {
+      table += "| " + r.id + " | " + r.kind + " | unavailable: " + r.unavailable + " | | | | | |\n";
+      j.push_back({{"id", r.id}, {"label", r.label}, {"kind", r.kind}, {"unavailable", r.unavailable}});
+      continue;
+    }
+    const eval::TrajectoryError e = eval::CompareTrajectories(r.poses, truth);
+    std::snprintf(line, sizeof line, "| %s | %s | %.2f | %.2f | %.2f | %.3f | %d | %.1f |\n", r.id.c_str(),
+                  r.kind.c_str(), 100 * e.ate_rmse_m, 100 * e.ate_max_m, 1000 * e.rpe_trans_rmse_m,
+                  e.rpe_rot_rmse_deg, r.lost, r.seconds);
+    table += line;
+    j.push_back({{"id", r.id},
+                 {"label", r.label},
+                 {"kind", r.kind},
+                 {"ate_rmse_m", e.ate_rmse_m},
+                 {"ate_max_m", e.ate_max_m},
+                 {"rpe_trans_rmse_m", e.rpe_trans_rmse_m},
+                 {"rpe_rot_rmse_deg", e.rpe_rot_rmse_deg},
+                 {"lost", r.lost},
+                 {"seconds", r.seconds}});
+  }
+  const std::string md =
+      "# Tracking on a real recording (`hdrfusion-experiments real`)\n\n"
+      "Recording: " + data.string() + ", " + std::to_string(frames.size()) + " frames at " +
+      std::to_string(sensor.camera.width) + "x" + std::to_string(sensor.camera.height) +
+      ", auto exposure on, colour and depth not registered, no calibration (ours: the sRGB curve). "
+      "Reference: the dataset's own poses (KinectFusion estimates, not motion capture). ATE after a rigid "
+      "alignment. Ours: frame to model, engine defaults; peers: hdrfusion-peers, their default settings, frame "
+      "to frame, on the same sequence folder in the same run.\n\n" +
+      table;
+  io::WriteFileAtomically(out / "real.md", md);
+  io::WriteFileAtomically(out / "real.json", json{{"frames", frames.size()}, {"trackers", j}}.dump(1) + "\n");
+  std::printf("%s\nwrote %s/{real.md, real.json}\n", table.c_str(), a.out.c_str());
+  return 0;
+}
+
+}  // namespace hdrf::experiments
