@@ -6,6 +6,8 @@
 #include <cstring>
 #include <string>
 
+#include <algorithm>
+
 #include "common/cuda_runtime.h"
 #include "common/error.h"
 #include "engine_bench.h"
@@ -67,6 +69,11 @@ int main(int argc, char** argv) {
   }
   std::string why;
   const bool gpu = CudaAvailable(&why);
+  // Asked for the GPU alone where there is none: an empty table would read as a result.
+  if (!gpu && std::none_of(o.devices.begin(), o.devices.end(), [](Device d) { return d == Device::kCpu; })) {
+    std::fprintf(stderr, "hdrfusion-bench: --device cuda, but no CUDA device can be used here: %s\n", why.c_str());
+    return 1;
+  }
   if (tonemap) {
     std::vector<Device> devices;
     for (Device d : o.devices)

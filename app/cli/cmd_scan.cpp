@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -92,7 +93,8 @@ Command AddScanCommand(CLI::App& app) {
   cmd->add_flag("--frame-to-frame", a->frame_to_frame, "Track against the previous frame (tracker.frame_to_model false)");
   cmd->add_option("--response", a->response, "Fallback for sequences without calibration: srgb")
       ->check(CLI::IsMember({"srgb"}));
-  cmd->add_option("--frames", a->max_frames, "Process at most this many frames");
+  cmd->add_option("--frames", a->max_frames, "Process at most this many frames (default: all)")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_option("--save", a->save, "Project file to save the scan to, to continue or export it later "
                                      "(default OUT/scan.hdrproj)");
   cmd->add_option("--resume", a->resume, "Continue the scan saved in this project file, in its coordinates and "

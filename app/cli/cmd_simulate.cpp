@@ -15,6 +15,9 @@
 namespace hdrf::cli {
 
 namespace {
+// Exposure times a camera can have: a microsecond to 100 seconds.
+constexpr double kMinExposureMs = 0.001, kMaxExposureMs = 100000;
+
 std::vector<double> ParseList(const std::string& s, const char* flag) {
   std::vector<double> out;
   std::stringstream ss(s);
@@ -27,6 +30,9 @@ std::vector<double> ParseList(const std::string& s, const char* flag) {
     } catch (const std::exception&) {
       throw SettingError(flag, "cannot parse '" + tok + "' as a number of milliseconds");
     }
+    if (!(out.back() >= kMinExposureMs && out.back() <= kMaxExposureMs))
+      throw SettingError(flag, "'" + tok + "' ms is not an exposure time (" + std::to_string(kMinExposureMs) +
+                                   " to " + std::to_string(int(kMaxExposureMs)) + " ms)");
   }
   return out;
 }
@@ -48,18 +54,19 @@ Command AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "Built-in scene")->check(CLI::IsMember({"room", "desk"}))
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed: textures, lights, path, noise")->capture_default_str();
-  cmd->add_option("--frames", a->frames, "Number of frames")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Number of frames")->check(CLI::Range(1, 1000000))->capture_default_str();
   cmd->add_option("--size", a->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--ae", a->ae, "Auto exposure: fixed, smooth, flicker or list")
       ->check(CLI::IsMember({"fixed", "smooth", "flicker", "list"}))->capture_default_str();
-  cmd->add_option("--exposure", a->exposure_ms, "Exposure (ms) for --ae fixed")->capture_default_str();
+  cmd->add_option("--exposure", a->exposure_ms, "Exposure (ms) for --ae fixed")
+      ->check(CLI::Range(kMinExposureMs, kMaxExposureMs))->capture_default_str();
   cmd->add_option("--exposures", a->exposures, "Comma-separated exposures (ms) for --ae list");
   cmd->add_flag("--sweep", a->sweep, "Exposure sweep for calibration: static camera, "
                                      "each exposure --sweep-repeats times");
   cmd->add_option("--sweep-exposures", a->sweep_exposures,
                   "Comma-separated sweep exposures (ms); default half-stops 0.25..128");
   cmd->add_option("--sweep-repeats", a->sweep_repeats, "Frames per sweep exposure")
-      ->capture_default_str();
+      ->check(CLI::Range(1, 10000))->capture_default_str();
   cmd->add_option("--response", a->response,
                   "sensor.json whose response and noise the simulated camera uses "
                   "(default: the built-in Xtion profile)");

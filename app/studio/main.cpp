@@ -10,9 +10,41 @@
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
 
+namespace {
+
+// The command line, read the same way with or without a display.
+struct CommandLine {
+  QCommandLineParser p;
+  QCommandLineOption source{"source",
+                            "Sequence folder, FILE.oni, openni:device=SERIAL,mode=vga|qvga (a live camera), or "
+                            "synthetic:key=value,... (default: the synthetic room)",
+                            "SPEC"};
+  QCommandLineOption frames{"frames", "Stop after N frames", "N"};
+  QCommandLineOption device{"device", "cpu or cuda", "DEVICE"};
+  QCommandLineOption shot{"screenshot", "Run, save the window to FILE (and FILE.json), and quit", "FILE"};
+  QCommandLineOption start{"start", "Start scanning at once"};
+  QCommandLineOption tone{"tone",
+                          "Tone mapping: an operator (mantiuk08, mantiuk06, reinhard, exposure, linear), then "
+                          "parameters as key=value, comma-separated (see hdrfusion tonemap --list)",
+                          "OP[,KEY=VALUE...]"};
+  QCommandLineOption project{"project", "Open a saved scan (.hdrproj); Start continues it", "FILE"};
+  QCommandLineOption no_recovery{"no-recovery-offer", "Do not offer scans a crash left (autosaves)"};
+  CommandLine() {
+    p.setApplicationDescription("HDRFusion Studio: HDR RGB-D scanning");
+    p.addHelpOption();
+    p.addOptions({source, frames, device, shot, start, tone, project, no_recovery});
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
       qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+    // --help still answers (and a wrong option is still named) without a display.
+    QCoreApplication core(argc, argv);
+    CommandLine cl;
+    cl.p.process(core);
     std::fprintf(stderr,
                  "hdrfusion-studio: no display here (DISPLAY is not set). Run it on a desktop or under "
                  "xvfb-run; for a headless scan use `hdrfusion scan` (tools/demo.sh does this).\n");
@@ -22,27 +54,20 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusion");
   QApplication::setApplicationName("HDRFusion Studio");
-  QCommandLineParser p;
-  p.setApplicationDescription("HDRFusion Studio: HDR RGB-D scanning");
-  p.addHelpOption();
-  QCommandLineOption source("source",
-                            "Sequence folder, FILE.oni, openni:device=SERIAL,mode=vga|qvga (a live camera), or "
-                            "synthetic:key=value,... (default: the synthetic room)",
-                            "SPEC");
-  QCommandLineOption frames("frames", "Stop after N frames", "N");
-  QCommandLineOption device("device", "cpu or cuda", "DEVICE");
-  QCommandLineOption shot("screenshot", "Run, save the window to FILE (and FILE.json), and quit", "FILE");
-  QCommandLineOption start("start", "Start scanning at once");
-  QCommandLineOption tone("tone", "Tone mapping: an operator (mantiuk08, mantiuk06, reinhard, exposure, linear), "
-                                  "then parameters as key=value, comma-separated (see hdrfusion tonemap --list)",
-                          "OP[,KEY=VALUE...]");
-  QCommandLineOption project("project", "Open a saved scan (.hdrproj); Start continues it", "FILE");
-  QCommandLineOption no_recovery("no-recovery-offer", "Do not offer scans a crash left (autosaves)");
-  p.addOptions({source, frames, device, shot, start, tone, project, no_recovery});
+  CommandLine cl;
+  QCommandLineParser& p = cl.p;
   p.process(app);
+  const QCommandLineOption &source = cl.source, &frames = cl.frames, &device = cl.device, &shot = cl.shot,
+                           &start = cl.start, &tone = cl.tone, &project = cl.project, &no_recovery = cl.no_recovery;
   hdrf::gui::StudioOptions o;
   o.source = p.value(source);
-  o.frames = p.value(frames).toInt();
+  bool frames_ok = true;
+  o.frames = p.isSet(frames) ? p.value(frames).toInt(&frames_ok) : 0;
+  if (!frames_ok || (p.isSet(frames) && o.frames < 1)) {
+    std::fprintf(stderr, "hdrfusion-studio: --frames must be a whole number of frames, at least 1 (got '%s')\n",
+                 p.value(frames).toLocal8Bit().constData());
+    return 2;
+  }
   o.device = p.value(device);
   o.screenshot = p.value(shot);
   o.autostart = p.isSet(start);

@@ -1,5 +1,6 @@
 #include "io/sensor_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -69,6 +70,31 @@ SensorInfo SensorFromJson(const std::filesystem::path& file, const json& j) {
   s.camera.fy = float(Positive(file, Require(file, cam, "fy", "camera."), "camera.fy"));
   s.camera.cx = float(Number(file, Require(file, cam, "cx", "camera."), "camera.cx"));
   s.camera.cy = float(Number(file, Require(file, cam, "cy", "camera."), "camera.cy"));
+  // A pinhole camera's focal length gives its field of view, and the principal point where
+  // the optical axis meets the image. Beyond a field of view of 0.01 to 179 degrees across
+  // the image, or a principal point more than an image size outside the image that also puts
+  // the image centre more than 85 degrees off the axis, the projection is
+  // meaningless (and the engine's loops over it ran without end), so such values are refused.
+  auto focal = [&](const char* key, double f, double size) {
+    const double lo = size / (2 * std::tan(89.5 * M_PI / 180)), hi = size / (2 * std::tan(0.005 * M_PI / 180));
+    if (f < lo || f > hi)
+      throw InputError(file, "'camera." + std::string(key) + "' is " + json(f).dump() + " pixels: with an image " +
+                                 json(int(size)).dump() + " pixels across that is not a field of view of 0.01 to "
+                                 "179 degrees (it must be between " + json(std::ceil(lo * 1000) / 1000).dump() +
+                                 " and " + json(std::floor(hi)).dump() + ")");
+  };
+  focal("fx", s.camera.fx, w);
+  focal("fy", s.camera.fy, h);
+  auto centre = [&](const char* key, double c, double f, double size) {
+    const double reach = std::max(1.5 * size, f * std::tan(85 * M_PI / 180));
+    if (std::fabs(c - size / 2) > reach)
+      throw InputError(file, "'camera." + std::string(key) + "' is " + json(c).dump() +
+                                 ": that principal point lies more than an image size outside the image and "
+                                 "puts its centre more than 85 degrees off the optical axis (it must be between " + json(std::ceil(size / 2 - reach)).dump() +
+                                 " and " + json(std::floor(size / 2 + reach)).dump() + ")");
+  };
+  centre("cx", s.camera.cx, s.camera.fx, w);
+  centre("cy", s.camera.cy, s.camera.fy, h);
   const json& depth = Require(file, j, "depth", "");
   s.depth_scale = Positive(file, Require(file, depth, "scale", "depth."), "depth.scale");
   // Raw depth units per metre: 1000 for millimetres, 5000 for TUM-style recordings. Below 1

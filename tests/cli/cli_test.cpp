@@ -157,6 +157,53 @@ TEST(Cli, SimulateSweepAndBadSettings) {
   EXPECT_EQ(io::SequenceReader((dir / "sweep").string()).size(), 9u);
 }
 
+// Values that used to be taken quietly, or to hang the engine, are refused naming the flag or
+// the key, before anything is written.
+TEST(Cli, QuietlyWrongValuesAndImpossibleIntrinsicsAreRefused) {
+  test::TempDir dir;
+  for (const char* bad : {"--exposure -5", "--exposure 0", "--ae list --exposures 3,-2", "--frames 0",
+                          "--sweep --sweep-repeats 0"}) {
+    const RunResult r = RunCli("simulate --out " + (dir / "neg").string() + " --size 32x24 " + bad);
+    EXPECT_NE(r.status, 0) << bad;
+    const std::string flag = std::string(bad).substr(std::string(bad).rfind("--"));
+    EXPECT_NE(r.output.find(flag.substr(0, flag.find(' '))), std::string::npos) << bad << ": " << r.output;
+    EXPECT_FALSE(fs::exists(dir / "neg")) << bad;
+  }
+  const std::string seq = (dir / "seq").string();
+  ASSERT_EQ(RunCli("simulate --out " + seq + " --frames 3 --size 64x48").status, 0);
+  RunResult r = RunCli("scan " + seq + " --frames 0 --out " + (dir / "o0").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--frames"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "o0"));
+  // A principal point at 1e30 pixels, a focal length of 1e-5 pixels: the scan used to run
+  // without end in integration; now info and scan both say which key is wrong.
+  for (const auto& [key, value] : {std::pair{"cx", 1e30}, {"fx", 1e-5}, {"cy", 3.5e38}}) {
+    const fs::path bad = dir / (std::string("bad_") + key);
+    fs::copy(seq, bad, fs::copy_options::recursive);
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(bad / "sensor.json"));
+    j["camera"][key] = value;
+    std::ofstream(bad / "sensor.json") << j.dump();
+    for (const std::string cmd : {"info " + bad.string(), "scan " + bad.string() + " --out " + (dir / "o").string()}) {
+      r = RunCli(cmd);
+      EXPECT_EQ(r.status, 1) << cmd << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string("'camera.") + key + "'"), std::string::npos) << cmd << ": " << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "o"));
+  }
+}
+
+// The benchmark asked for the GPU alone either measures it or says why it cannot: never an
+// empty table and success.
+TEST(Cli, BenchOnTheGpuAloneMeasuresItOrSaysWhyNot) {
+  const RunResult r = test::RunCommand(std::string(HDRF_BENCH) + " --device cuda --frames 5 --case 64x48x40");
+  if (r.status == 0) {
+    EXPECT_NE(r.output.find("| cuda |"), std::string::npos) << r.output;
+  } else {
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("no CUDA device can be used here"), std::string::npos) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace hdrf
 

@@ -404,6 +404,17 @@ TEST(StudioProgram, WithoutADisplayItSaysSo) {
   EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
 }
 
+// --help answers without a display (it needs none), and a wrong option is named there too.
+TEST(StudioProgram, HelpNeedsNoDisplay) {
+  auto r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_STUDIO_BINARY " --help 2>&1");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--source"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("no display"), std::string::npos) << r.output;
+  r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_STUDIO_BINARY " --sorce x 2>&1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("sorce"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace hdrf::gui
 

@@ -129,23 +129,53 @@ TEST(SensorJson, MissingFileAndInvalidJson) {
 
 TEST(SensorJson, MissingRequiredKeysNamed) {
   TempDir dir;
-  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": 1, "fy": 1,
-                                    "cx": 1, "cy": 1}})");
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": 525, "fy": 525,
+                                    "cx": 320, "cy": 240}})");
   ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"sensor.json", "'depth'"});
-  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "fx": 1, "fy": 1, "cx": 1,
-                                    "cy": 1}, "depth": {"scale": 1}})");
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "fx": 525, "fy": 525, "cx": 320,
+                                    "cy": 240}, "depth": {"scale": 1}})");
   ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
                         {"sensor.json", "camera.height"});
-  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": -1, "fy": 1,
-                                    "cx": 1, "cy": 1}, "depth": {"scale": 1}})");
+  WriteText(dir / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": -1, "fy": 525,
+                                    "cx": 320, "cy": 240}, "depth": {"scale": 1}})");
   ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"camera.fx", "positive"});
   // Metres per unit written where units per metre are meant (depths of kilometres).
   for (const char* scale : {"0.001", "0.01", "1e-30", "1e9"}) {
-    WriteText(dir / "sensor.json", std::string(R"({"camera": {"width": 640, "height": 480, "fx": 1, "fy": 1,
-                                    "cx": 1, "cy": 1}, "depth": {"scale": )") + scale + "}}");
+    WriteText(dir / "sensor.json", std::string(R"({"camera": {"width": 640, "height": 480, "fx": 525, "fy": 525,
+                                    "cx": 320, "cy": 240}, "depth": {"scale": )") + scale + "}}");
     ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
                           {"sensor.json", "'depth.scale'", "units per metre"});
   }
+}
+
+// Intrinsics no lens has (a field of view outside 0.01 to 179 degrees, an image centre more
+// than 85 degrees off the optical axis) are refused naming the key: the engine's loops over such a projection
+// ran without end.
+TEST(SensorJson, ImpossibleIntrinsicsRefusedNamingTheKey) {
+  TempDir dir;
+  auto with = [&](const char* fx, const char* fy, const char* cx, const char* cy) {
+    WriteText(dir / "sensor.json", std::string(R"({"camera": {"width": 320, "height": 240, "fx": )") + fx +
+                                       ", \"fy\": " + fy + ", \"cx\": " + cx + ", \"cy\": " + cy +
+                                       R"(}, "depth": {"scale": 1000}})");
+  };
+  with("1e-5", "269.5", "159.5", "119.5");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"sensor.json", "'camera.fx'", "field of view"});
+  with("269.5", "1e9", "159.5", "119.5");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"'camera.fy'", "field of view"});
+  with("269.5", "269.5", "1e30", "119.5");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"'camera.cx'", "principal point"});
+  with("269.5", "269.5", "159.5", "3.5e38");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"'camera.cy'", "principal point"});
+  with("269.5", "269.5", "159.5", "-5000");
+  ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"'camera.cy'", "85 degrees"});
+  // Near the edges of the allowed ranges: 179 and 0.01 degrees across; an image centre 80
+  // degrees off the axis (a crop far from a wide lens's centre).
+  with("1.4", "1.1", "0", "240");
+  EXPECT_NEAR(ReadSensorJson(dir / "sensor.json").camera.fx, 1.4, 1e-6);
+  with("1833000", "1375000", "320", "0");
+  EXPECT_NEAR(ReadSensorJson(dir / "sensor.json").camera.fy, 1375000, 1);
+  with("269.5", "269.5", "1688", "119.5");
+  EXPECT_NEAR(ReadSensorJson(dir / "sensor.json").camera.cx, 1688, 1e-3);
 }
 
 TEST(SensorJson, NonMonotonicResponseRejected) {
