@@ -33,12 +33,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string ShellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 Pose ReadPoseMatrix(const fs::path& file) {
   std::ifstream in(file);
   double m[16];
@@ -79,7 +73,7 @@ int RunRealTracking(const RealTrackingArgs& a) {
   const fs::path data = a.data, out = a.out;
   // 1. The recording as a sequence folder (copies: every reader gets identical files).
   std::map<int, std::string> stems;  // frame number -> "frame-NNNNNN"
-  const std::regex pat(R"(frame-(\d+)\.color\.png)");
+  const std::regex pat(R"(frame-(\d{1,9})\.color\.png)");
   for (const auto& e : fs::directory_iterator(data / "frames")) {
     std::smatch m;
     const std::string name = e.path().filename().string();
@@ -168,22 +162,8 @@ int RunRealTracking(const RealTrackingArgs& a) {
     } else {
       const json pj = io::ReadJsonFile(pout / "peers.json");
       for (const auto& e : pj.at("peers")) {
-        Row r;
-        r.id = e.at("id").get<std::string>();
-        r.label = e.at("label").get<std::string>();
-        r.kind = "peer";
-        if (e.contains("unavailable")) {
-          r.unavailable = e.at("unavailable").get<std::string>();
-        } else {
-          for (const auto& tp : io::ReadTrajectory(pout / (r.id + ".txt"))) r.poses.push_back(tp.T_world_camera);
-          if (r.poses.size() != frames.size())
-            throw InputError((pout / (r.id + ".txt")).string(), "has " + std::to_string(r.poses.size()) +
-                                                                    " poses for " + std::to_string(frames.size()) +
-                                                                    " frames");
-          r.lost = e.at("failed").get<int>();
-          r.seconds = e.at("seconds").get<double>();
-        }
-        rows.push_back(std::move(r));
+        PeerResult pr = ReadPeerResult(e, pout, frames.size());
+        rows.push_back({pr.id, pr.label, "peer", std::move(pr.poses), pr.failed, pr.seconds, pr.unavailable});
       }
     }
   }

@@ -70,11 +70,6 @@ class TemporaryFolder {
   fs::path path_;
 };
 
-std::string Quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 struct Row {
   std::string id, label, kind;  // kind: "ours", "baseline", "peer"
@@ -87,6 +82,29 @@ struct Row {
 };
 
 }  // namespace
+
+std::string ShellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+PeerResult ReadPeerResult(const json& e, const fs::path& dir, std::size_t frames) {
+  PeerResult r;
+  r.id = e.at("id").get<std::string>();
+  r.label = e.at("label").get<std::string>();
+  if (e.contains("unavailable")) {
+    r.unavailable = e.at("unavailable").get<std::string>();
+    return r;
+  }
+  for (const auto& tp : io::ReadTrajectory(dir / (r.id + ".txt"))) r.poses.push_back(tp.T_world_camera);
+  if (r.poses.size() != frames)
+    throw InputError((dir / (r.id + ".txt")).string(), "has " + std::to_string(r.poses.size()) + " poses for " +
+                                                           std::to_string(frames) + " frames");
+  r.failed = e.at("failed").get<int>();
+  r.seconds = e.at("seconds").get<double>();
+  return r;
+}
 
 void CheckTrackingArgs(const TrackingExperimentArgs& a) {
   if (a.out.empty()) throw SettingError("--out", "names the results folder and is required");
@@ -179,7 +197,8 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
     if (!peers.empty()) {
       const fs::path pout = work / ("peers-" + ae);
       fs::remove_all(pout);
-      const std::string cmd = Quote(peers.string()) + " " + Quote(seq_dir.string()) + " --out " + Quote(pout.string());
+      const std::string cmd = ShellQuote(peers.string()) + " " + ShellQuote(seq_dir.string()) + " --out " +
+                              ShellQuote(pout.string());
       std::fprintf(stderr, "tracking: %s peers: %s\n", ae.c_str(), cmd.c_str());
       const int rc = std::system(cmd.c_str());
       if (rc != 0) {
@@ -197,21 +216,19 @@ int RunTrackingExperiment(const TrackingExperimentArgs& a) {
       }
       const json pj = rc == 0 ? io::ReadJsonFile(pout / "peers.json") : json{{"peers", json::array()}};
       for (const auto& e : pj.at("peers")) {
+        PeerResult pr = ReadPeerResult(e, pout, frames.size());
         Row r;
-        r.id = e.at("id").get<std::string>();
-        r.label = e.at("label").get<std::string>();
+        r.id = pr.id;
+        r.label = pr.label;
         r.kind = "peer";
-        if (e.contains("unavailable")) {
-          r.covers = "unavailable: " + e.at("unavailable").get<std::string>();
+        if (!pr.unavailable.empty()) {
+          r.covers = "unavailable: " + pr.unavailable;
           rows.push_back(std::move(r));
           continue;
         }
-        for (const auto& tp : io::ReadTrajectory(pout / (r.id + ".txt"))) r.poses.push_back(tp.T_world_camera);
-        if (r.poses.size() != frames.size())
-          throw InputError((pout / (r.id + ".txt")).string(), "has " + std::to_string(r.poses.size()) +
-                                                                  " poses for " + std::to_string(frames.size()) + " frames");
-        r.lost = e.at("failed").get<int>();
-        r.seconds = e.at("seconds").get<double>();
+        r.poses = std::move(pr.poses);
+        r.lost = pr.failed;
+        r.seconds = pr.seconds;
         r.covers = "tracking";
         rows.push_back(std::move(r));
         // Open3D's TSDF integration at its own poses, beside our engine on the same frames.
