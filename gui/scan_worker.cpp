@@ -211,7 +211,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
     if (live_) msg = tr("Live preview: %1 (Start scans)").arg(QString::fromStdString(source_->description()));
     const pipeline::Pipeline& pipe = session_->pipeline();
     if (!pipe.device_note().empty()) msg += " — " + QString::fromStdString(pipe.device_note());
-    for (const std::string& w : source_->sensor().warnings) msg += " — " + QString::fromStdString(w);
+    for (const std::string& w : source_->sensor().warnings) msg += " — " + QString::fromStdString(Printable(w));
     emit stateChanged(false, msg);
     if (live_) {
       ListSensors();
@@ -652,7 +652,7 @@ void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& opti
                        3 * r.preview.width(), QImage::Format_RGB888)
                     .copy();
     QString msg = tr("Wrote %1 files into %2: %3").arg(r.files.size()).arg(folder, QString::fromStdString(r.Summary()));
-    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(QString::fromStdString(w));
+    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(QString::fromStdString(Printable(w)));
     emit assetDone(true, msg, preview);
   } catch (const Cancelled&) {
     emit assetDone(false, tr("Export cancelled; the folder was left as it was"), {});

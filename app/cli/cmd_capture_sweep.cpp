@@ -72,7 +72,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
                   plan.exposures_ms.front(), plan.exposures_ms.back(), plan.options.repeats);
       std::printf("levels covered by the preview: R %.0f %%, G %.0f %%, B %.0f %%\n", 100 * plan.coverage.share[0],
                   100 * plan.coverage.share[1], 100 * plan.coverage.share[2]);
-      for (const std::string& w : plan.warnings) std::printf("warning: %s\n", w.c_str());
+      for (const std::string& w : plan.warnings) std::printf("warning: %s\n", Printable(w).c_str());
       capture.emplace(*camera, plan, out);
     }
     const io::CaptureResult r = capture->Run(show, &interrupt.flag());

@@ -14,7 +14,7 @@
 #include "io/project.h"
 #include "mesh/mesh.h"
 #include "io/sequence.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "io/tum.h"
 #include "sim/scene.h"
 

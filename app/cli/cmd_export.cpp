@@ -110,7 +110,7 @@ Command AddExportCommand(CLI::App& app) {
       return !stop.raised();
     });
     if (tty) std::fprintf(stderr, "\n");
-    for (const std::string& w : r.warnings) std::fprintf(stderr, "export: warning: %s\n", w.c_str());
+    for (const std::string& w : r.warnings) std::fprintf(stderr, "export: warning: %s\n", Printable(w).c_str());
     std::printf("%s\nwrote %s/{", r.Summary().c_str(), a->out.c_str());
     for (std::size_t i = 0; i < r.files.size(); ++i) std::printf("%s%s", i ? ", " : "", r.files[i].c_str());
     std::printf("}\n");

@@ -19,7 +19,7 @@ Command AddInfoCommand(CLI::App& app) {
     const io::SequenceReader seq(*folder);
     const io::SequenceSummary s = io::Summarize(seq, *samples);
     std::fputs(s.ToText(*folder).c_str(), stdout);
-    for (const std::string& w : seq.sensor().warnings) std::fprintf(stderr, "info: warning: %s\n", w.c_str());
+    for (const std::string& w : seq.sensor().warnings) std::fprintf(stderr, "info: warning: %s\n", Printable(w).c_str());
     return 0;
   }};
 }

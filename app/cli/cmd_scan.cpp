@@ -1,7 +1,8 @@
 // hdrfusion scan SOURCE --out DIR: the whole method on a sequence or the synthetic sensor.
 // Writes trajectory.txt, mesh.ply, renders (OpenEXR + PNG), report.json and the project
-// (scan.hdrproj, or --save PATH) that --resume continues. If the source fails midway, or
-// Ctrl-C stops the scan, what was built so far is still written (and the error reported).
+// (scan.hdrproj, or --save PATH) that --resume continues, as one set: all are replaced or
+// none. If the source fails midway, Ctrl-C cancels the scan, or an output cannot be written,
+// nothing in the output folder changes and the model so far is kept in the recovery file.
 // While it runs, the scan is autosaved to a recovery file (io/project.h) every --autosave
 // seconds; a scan that finishes removes it, one that crashed leaves it to be resumed.
 
@@ -27,7 +28,7 @@
 #include "io/ply.h"
 #include "io/project.h"
 #include "cli/interrupt.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "io/tum.h"
 #include "mesh/mesh.h"
 #include "pipeline/pipeline.h"
@@ -127,8 +128,14 @@ Command AddScanCommand(CLI::App& app) {
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
-    for (const std::string& w : source->sensor().warnings) std::fprintf(stderr, "scan: warning: %s\n", w.c_str());
+    for (const std::string& w : source->sensor().warnings) std::fprintf(stderr, "scan: warning: %s\n", Printable(w).c_str());
     const fs::path save = a->save.empty() ? out / "scan.hdrproj" : fs::path(a->save);
+    // An output that may not be replaced (a link, a device, a folder) is refused before the scan.
+    io::CheckReplaceable(save);
+    for (const char* f : {"trajectory.txt", "mesh.ply", "report.json", "keyframes.json", "sensor.json", "render_first.exr",
+                          "render_first.png", "render_first_normals.png", "render_last.exr", "render_last.png",
+                          "render_last_normals.png"})
+      io::CheckReplaceable(out / f);
     // Unfinished scans a crash left behind are offered, newest first.
     for (const fs::path& r : io::FindRecoveryFiles())
       if (project == std::nullopt || fs::absolute(r) != fs::absolute(a->resume)) {
@@ -240,7 +247,6 @@ Command AddScanCommand(CLI::App& app) {
       }
     }
     progress.Done();
-    if (stopped) std::fprintf(stderr, "scan: stopped by Ctrl-C after %d frames; saving what was built\n", session.frames());
     const int n = session.frames();
     if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
     if (session.count(pipeline::FrameState::kWaiting) == n && !pipe.volume_stats().allocated_bricks)
@@ -248,71 +254,94 @@ Command AddScanCommand(CLI::App& app) {
                   std::to_string(int(std::ceil(100 * o.tracker.min_anchor_depth))) +
                   " % of its pixels (tracker.min_anchor_depth); nothing was written" +
                   (failure.empty() ? "" : " (and the source failed: " + failure + ")"));
-    // The project first: the model is the most expensive thing to lose.
-    const auto save_start = std::chrono::steady_clock::now();
-    io::SaveProject(save, session, {source_text, source_spec, failure.empty()});
-    std::error_code size_ec;
-    std::fprintf(stderr, "scan: saved the project %s (%.1f MiB, %.2f s)\n", save.c_str(),
-                 double(fs::file_size(save, size_ec)) / (1 << 20),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - save_start).count());
-    std::error_code rm_ec;
-    fs::remove(recovery, rm_ec);
-    // Outputs: everything built so far.
-    std::vector<io::TimedPose> trajectory;
-    for (const pipeline::FrameReport& r : session.reports()) trajectory.push_back({r.timestamp, r.T_world_camera});
-    io::WriteTrajectory(out / "trajectory.txt", trajectory);
-    // The keyframes (colour, pose, exposure ratio) and the sensor: what export bakes textures from.
-    io::WriteKeyframes(out, session.keyframes(), session.sensor(), o.pcf);
-    std::fprintf(stderr, "scan: extracting the mesh...\n");
-    const mesh::Mesh m = pipe.ExtractMesh();
-    // Renders and the mesh's display colours through one operator instance: the mesh takes
-    // the curve of the last render (as the studio's 3-D view takes the model view's).
-    const io::OcioDisplay ocio;
-    auto tone = tone_decl.make(tone_params, Device::kCpu);
-    WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity(), *tone, ocio);
-    WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose(), *tone, ocio);
-    const std::vector<Rgb8> display = ocio.Encode(tone->MapList(m.radiance));
-    io::WritePly(out / "mesh.ply", m, m.radiance.size() == m.position.size() ? &display : nullptr);
-    json frames = json::array();
-    for (const pipeline::FrameReport& r : session.reports()) frames.push_back(io::FrameReportToJson(r));
-    const pipeline::StageTimes mean = session.mean_ms();
-    const pipeline::VolumeStats vs = pipe.volume_stats();
+    // The model, kept in the recovery file when the outputs cannot be: what to do with it.
+    const auto keep = [&]() -> std::string {
+      try {
+        fs::create_directories(recovery.parent_path());
+        io::SaveProject(recovery, session, {source_text, source_spec, false});
+      } catch (const std::exception& e) {
+        return "the model could not be kept either: " + std::string(e.what());
+      }
+      return "the " + std::to_string(n) + " frames scanned are kept in " + recovery.string() +
+             ": export them with `hdrfusion export " + recovery.string() + " --out DIR`, or go on with `hdrfusion " +
+             "scan --resume " + recovery.string() + " SOURCE --out DIR`";
+    };
+    // A scan that did not finish leaves the outputs of the last one that did exactly as they were.
+    if (stopped) {
+      std::fprintf(stderr, "scan: cancelled by Ctrl-C after %d frames: nothing in %s was changed; %s\n", n,
+                   a->out.c_str(), keep().c_str());
+      return 130;
+    }
+    if (!failure.empty()) throw Error(failure + " (nothing in " + a->out + " was changed; " + keep() + ")");
     const int lost = session.lost();
     const std::optional<double> exp_err = session.exposure_median_relative_error();
-    json report = {{"source", source_text},
-                   {"device", DeviceName(pipe.device())},
-                   {"frames", n},
-                   {"lost_frames", lost},
-                   {"fused_frames", session.fused()},
-                   {"waiting_frames", session.count(pipeline::FrameState::kWaiting)},
-                   {"unconfirmed_frames", session.count(pipeline::FrameState::kConfirming)},
-                   {"relocalisations", session.relocalisations()},
-                   {"options", json::parse(io::PipelineOptionsToJson(o))},
-                   {"mean_ms", {{"convert", mean.convert}, {"normalize", mean.normalize}, {"track", mean.track},
-                                {"compensate", mean.compensate}, {"integrate", mean.integrate},
-                                {"raycast", mean.raycast}, {"total", mean.total()}}},
-                   {"fps", session.frames_per_second()},
-                   {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full},
-                               {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m},
-                               {"gpu_bricks", vs.streaming.gpu_bricks}, {"host_bricks", vs.streaming.host_bricks},
-                               {"gpu_bytes", vs.streaming.gpu_bytes}, {"swapped_out", vs.streaming.swapped_out},
-                               {"swapped_in", vs.streaming.swapped_in}}},
-                   {"mesh", {{"vertices", m.position.size()}, {"triangles", m.triangles.size()}}},
-                   {"project", save.string()},
-                   {"frames_detail", frames}};
-    if (exp_err) report["exposure_median_relative_error"] = *exp_err;
-    if (!failure.empty()) report["error"] = failure;
-    io::WriteFileAtomically(out / "report.json", report.dump(1) + "\n");
+    std::size_t vertices = 0, triangles = 0;
+    // All outputs are one set: written beside their targets, and moved into place only when
+    // every one of them is complete (a full disk or a failed mesh changes nothing).
+    try {
+      io::OutputSet outputs;
+      // The project first: the model is the most expensive thing to lose.
+      const auto save_start = std::chrono::steady_clock::now();
+      io::SaveProject(save, session, {source_text, source_spec, true});
+      std::fprintf(stderr, "scan: wrote the project (%.2f s)\n",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - save_start).count());
+      std::vector<io::TimedPose> trajectory;
+      for (const pipeline::FrameReport& r : session.reports()) trajectory.push_back({r.timestamp, r.T_world_camera});
+      io::WriteTrajectory(out / "trajectory.txt", trajectory);
+      // The keyframes (colour, pose, exposure ratio) and the sensor: what export bakes textures from.
+      io::WriteKeyframes(out, session.keyframes(), session.sensor(), o.pcf);
+      std::fprintf(stderr, "scan: extracting the mesh...\n");
+      const mesh::Mesh m = pipe.ExtractMesh();
+      vertices = m.position.size();
+      triangles = m.triangles.size();
+      // Renders and the mesh's display colours through one operator instance: the mesh takes
+      // the curve of the last render (as the studio's 3-D view takes the model view's).
+      const io::OcioDisplay ocio;
+      auto tone = tone_decl.make(tone_params, Device::kCpu);
+      WriteRender(out, "render_first", pipe.Render(Pose::Identity()), Pose::Identity(), *tone, ocio);
+      WriteRender(out, "render_last", pipe.Render(pipe.pose()), pipe.pose(), *tone, ocio);
+      const std::vector<Rgb8> display = ocio.Encode(tone->MapList(m.radiance));
+      io::WritePly(out / "mesh.ply", m, m.radiance.size() == m.position.size() ? &display : nullptr);
+      json frames = json::array();
+      for (const pipeline::FrameReport& r : session.reports()) frames.push_back(io::FrameReportToJson(r));
+      const pipeline::StageTimes mean = session.mean_ms();
+      const pipeline::VolumeStats vs = pipe.volume_stats();
+      json report = {{"source", source_text},
+                     {"device", DeviceName(pipe.device())},
+                     {"frames", n},
+                     {"lost_frames", lost},
+                     {"fused_frames", session.fused()},
+                     {"waiting_frames", session.count(pipeline::FrameState::kWaiting)},
+                     {"unconfirmed_frames", session.count(pipeline::FrameState::kConfirming)},
+                     {"relocalisations", session.relocalisations()},
+                     {"options", json::parse(io::PipelineOptionsToJson(o))},
+                     {"mean_ms", {{"convert", mean.convert}, {"normalize", mean.normalize}, {"track", mean.track},
+                                  {"compensate", mean.compensate}, {"integrate", mean.integrate},
+                                  {"raycast", mean.raycast}, {"total", mean.total()}}},
+                     {"fps", session.frames_per_second()},
+                     {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full},
+                                 {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m},
+                                 {"gpu_bricks", vs.streaming.gpu_bricks}, {"host_bricks", vs.streaming.host_bricks},
+                                 {"gpu_bytes", vs.streaming.gpu_bytes}, {"swapped_out", vs.streaming.swapped_out},
+                                 {"swapped_in", vs.streaming.swapped_in}}},
+                     {"mesh", {{"vertices", vertices}, {"triangles", triangles}}},
+                     {"project", save.string()},
+                     {"frames_detail", frames}};
+      if (exp_err) report["exposure_median_relative_error"] = *exp_err;
+      io::WriteFileAtomically(out / "report.json", report.dump(1) + "\n");
+      outputs.Commit();
+    } catch (const std::exception& e) {
+      throw Error(std::string(e.what()) + " (nothing in " + a->out + " was changed; " + keep() + ")");
+    }
+    std::error_code rm_ec;
+    fs::remove(recovery, rm_ec);
     std::printf("scanned %d frames (%d fused, %d lost, %d relocalisations) at %.1f frames/s: %zu mesh vertices, %zu "
                 "triangles\n",
-                n, session.fused(), lost, session.relocalisations(), session.frames_per_second(), m.position.size(),
-                m.triangles.size());
+                n, session.fused(), lost, session.relocalisations(), session.frames_per_second(), vertices, triangles);
     if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
     std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, keyframes/ (%zu), "
                 "keyframes.json, sensor.json, report.json} and the project %s\n",
                 a->out.c_str(), session.keyframes().size(), save.c_str());
-    if (!failure.empty())
-      throw Error(failure + " (the model of the " + std::to_string(n) + " frames processed was saved in " + a->out + ")");
     return 0;
   }};
 }

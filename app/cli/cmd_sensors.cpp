@@ -84,7 +84,7 @@ Command AddRecordCommand(CLI::App& app) {
       throw InputError(out.parent_path(), "folder does not exist");
 
     sensors::LiveFrameSource live(o);
-    for (const std::string& w : live.sensor().warnings) std::fprintf(stderr, "record: warning: %s\n", w.c_str());
+    for (const std::string& w : live.sensor().warnings) std::fprintf(stderr, "record: warning: %s\n", Printable(w).c_str());
     const auto st = live.camera().exposure();
     std::fprintf(stderr, "record: %s, auto exposure %s, white balance %s%s\n", live.description().c_str(),
                  st.auto_exposure ? "on" : "off", st.auto_white_balance ? "auto" : "fixed",

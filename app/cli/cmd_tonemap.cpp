@@ -11,7 +11,7 @@
 #include "io/exr.h"
 #include "io/image_io.h"
 #include "io/ocio_display.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "tonemap/operator.h"
 
 namespace hdrf::cli {

@@ -33,7 +33,7 @@ inline int Run(CLI::App& app, const std::vector<Command>& commands, int argc, ch
     std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: unexpected error: %s\n", name.c_str(), e.what());
+    std::fprintf(stderr, "%s: unexpected error: %s\n", name.c_str(), Printable(e.what()).c_str());
     return 2;
   }
   return 0;

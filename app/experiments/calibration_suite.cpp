@@ -17,7 +17,7 @@
 #include "response_curves.h"
 #include "eval/response_error.h"
 #include "sim/sweep_simulator.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "sim/builtin_sensor.h"
 
 namespace hdrf::experiments {

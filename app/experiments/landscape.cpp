@@ -18,7 +18,7 @@
 #include "radiometry/radiance.h"
 #include "io/image_io.h"
 #include "io/json_file.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "pipeline/frame_source.h"
 #include "radiometry/pcf.h"
 #include "tracking/tracking.h"

@@ -14,7 +14,7 @@
 #include "normalized_radiance/normalized_radiance.h"
 #include "radiometry/radiance.h"
 #include "io/image_io.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "pipeline/frame_source.h"
 #include "radiometry/pcf.h"
 

@@ -11,7 +11,7 @@
 #include "experiments.h"
 #include "common/error.h"
 #include "io/json_file.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 
 namespace hdrf::experiments {
 

@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "eval/eval.h"
 #include "io/source_spec.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "pipeline/frame_source.h"
 #include "pipeline/pipeline.h"
 #include "sim/synthetic_source.h"

@@ -22,7 +22,7 @@
 #include "io/image_io.h"
 #include "io/json_file.h"
 #include "io/source_spec.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "io/tum.h"
 #include "tracking_experiment.h"
 

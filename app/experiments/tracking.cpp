@@ -25,7 +25,7 @@
 #include "io/ply.h"
 #include "io/sequence.h"
 #include "io/source_spec.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "io/tum.h"
 #include "sim/synthetic_source.h"
 

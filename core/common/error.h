@@ -4,13 +4,20 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace hdrf {
 
-// Thrown for bad configuration and bad input. what() is a complete, one-line sentence.
+// `text` made safe for a terminal or a log: control characters (C0, DEL, C1), which input
+// files can carry into messages (a file name, a quoted field), and bytes that are not UTF-8
+// are written as \xNN; everything else, backslashes included, is kept as it was.
+std::string Printable(std::string_view text);
+
+// Thrown for bad configuration and bad input. what() is a complete, one-line sentence, with
+// no control characters (Printable).
 class Error : public std::runtime_error {
  public:
-  explicit Error(const std::string& message) : std::runtime_error(message) {}
+  explicit Error(const std::string& message) : std::runtime_error(Printable(message)) {}
 };
 
 // "<file>: <what>" or "<file>:<line>: <what>" (line is 1-based; 0 means no line).

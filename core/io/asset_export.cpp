@@ -18,7 +18,7 @@
 #include "io/ocio_display.h"
 #include "io/ply.h"
 #include "io/simplify.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 #include "io/tum.h"
 #include "tonemap/operator.h"
 
@@ -134,8 +134,7 @@ class Staging {
   void Commit(const std::vector<std::string>& files) {
     // Everything that can be checked before the first file moves: a half-replaced set would
     // mix two exports.
-    for (const std::string& f : files)
-      if (fs::is_directory(out_ / f)) throw InputError(out_ / f, "is a folder: cannot be replaced by the export's file");
+    for (const std::string& f : files) CheckReplaceable(out_ / f);
     for (const std::string& f : files) {
       if (fs::path(f).has_parent_path()) fs::create_directories(out_ / fs::path(f).parent_path());
       std::error_code ec;

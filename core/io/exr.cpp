@@ -3,6 +3,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
@@ -12,8 +13,8 @@
 #include <cmath>
 #include <vector>
 
+#include "io/output_file.h"
 #include "common/error.h"
-#include "io/text_table.h"
 
 namespace hdrf::io {
 
@@ -58,11 +59,31 @@ void WriteExr(const std::filesystem::path& file, const RadianceImage& image,
   WriteExr(file, image, o);
 }
 
+namespace {
+// OpenEXR writes through this into an OutputFile's stream (it seeks back for the line offsets).
+class OutputStream : public Imf::OStream {
+ public:
+  OutputStream(std::ostream& os, const std::filesystem::path& file) : Imf::OStream(file.c_str()), os_(os) {}
+  void write(const char c[], int n) override {
+    os_.write(c, n);
+    if (!os_) throw std::runtime_error("write failed (disk full?)");
+  }
+  uint64_t tellp() override { return uint64_t(os_.tellp()); }
+  void seekp(uint64_t pos) override {
+    os_.seekp(std::streamoff(pos));
+    if (!os_) throw std::runtime_error("seek failed");
+  }
+
+ private:
+  std::ostream& os_;
+};
+}  // namespace
+
 void WriteExr(const std::filesystem::path& file, const RadianceImage& image, const ExrWriteOptions& o) {
   for (const ExrChannel& c : o.extra)
     if (!c.image || c.image->width() != image.width() || c.image->height() != image.height())
       throw Error("OpenEXR channel '" + c.name + "' differs in size from the image (" + file.string() + ")");
-  const auto tmp = TemporarySibling(file);
+  OutputFile staged(file);
   try {
     Imf::Header header(image.width(), image.height());
     header.compression() = Imf::ZIP_COMPRESSION;
@@ -98,15 +119,14 @@ void WriteExr(const std::filesystem::path& file, const RadianceImage& image, con
       char* base = pl.type == Imf::HALF ? reinterpret_cast<char*>(pl.h.data()) : reinterpret_cast<char*>(pl.f.data());
       fb.insert(pl.name, Imf::Slice(pl.type, base, size, size * std::size_t(image.width())));
     }
-    Imf::OutputFile out(tmp.string().c_str(), header);
+    OutputStream os(staged.stream(), file);
+    Imf::OutputFile out(os, header);
     out.setFrameBuffer(fb);
     out.writePixels(image.height());
   } catch (const std::exception& e) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
     throw InputError(file, std::string("cannot be written as OpenEXR: ") + e.what());
   }
-  CommitTemporary(tmp, file);
+  staged.Commit();
 }
 
 Image<float> ReadExrChannel(const std::filesystem::path& file, const std::string& name) {

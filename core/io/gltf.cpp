@@ -5,8 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "io/output_file.h"
 #include "common/error.h"
-#include "io/text_table.h"
 
 namespace hdrf::io {
 
@@ -134,14 +134,11 @@ void WriteGlb(const std::filesystem::path& file, const mesh::Atlas& atlas, const
   scene.nodes.push_back(0);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
-  const auto tmp = TemporarySibling(file);
+  OutputFile out(file);
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, tmp.string(), false, true, false, true)) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw InputError(file, "cannot be written as glTF binary");
-  }
-  CommitTemporary(tmp, file);
+  if (!writer.WriteGltfSceneToStream(&model, out.stream(), false, true) || !out.stream())
+    throw InputError(file, "cannot be written as glTF binary (disk full?)");
+  out.Commit();
 }
 
 }  // namespace hdrf::io

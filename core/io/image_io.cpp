@@ -6,8 +6,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/output_file.h"
 #include "common/error.h"
-#include "io/text_table.h"
 
 namespace hdrf::io {
 
@@ -37,19 +37,15 @@ cv::Mat Load(const std::filesystem::path& file) {
 }
 
 void Save(const std::filesystem::path& file, const cv::Mat& m) {
-  const auto tmp = TemporarySibling(file);
+  std::vector<std::uint8_t> png;
   bool ok = false;
   try {
-    ok = cv::imwrite(tmp.string(), m);
-  } catch (const cv::Exception& e) {
+    ok = cv::imencode(".png", m, png);
+  } catch (const cv::Exception&) {
     ok = false;
   }
-  if (!ok) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw InputError(file, "cannot be written as PNG");
-  }
-  CommitTemporary(tmp, file);
+  if (!ok) throw InputError(file, "cannot be written as PNG");
+  WriteFileAtomically(file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 }  // namespace

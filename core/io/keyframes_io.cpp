@@ -8,7 +8,7 @@
 #include "io/image_io.h"
 #include "io/json_file.h"
 #include "io/sensor_json.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 
 namespace hdrf::io {
 

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/output_file.h"
 #include "common/error.h"
-#include "io/text_table.h"
 #include "tonemap/display.h"
 
 namespace hdrf::io {
@@ -40,12 +40,9 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
   for (const char* p : kVertexProps) h << "property " << p << "\n";
   if (flags) h << "property " << kFlagProp << "\n";
   h << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-  const auto tmp = TemporarySibling(file);
+  OutputFile out(file);
   {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(file, "cannot be opened for writing");
-    const std::string header = h.str();
-    out.write(header.data(), std::streamsize(header.size()));
+    out.Write(h.str());
     std::vector<char> buf;
     buf.reserve(m.position.size() * 39);
     auto put = [&](const void* p, std::size_t n) {
@@ -64,15 +61,9 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
       put(&three, 1);
       put(t.data(), 12);
     }
-    out.write(buf.data(), std::streamsize(buf.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InputError(file, "write failed (disk full?)");
-    }
+    out.Write(std::string_view(buf.data(), buf.size()));
   }
-  CommitTemporary(tmp, file);
+  out.Commit();
 }
 
 mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>* flags_out) {

@@ -13,11 +13,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "io/output_file.h"
 #include "common/error.h"
 #include "io/image_io.h"
 #include "io/options_json.h"
 #include "io/sensor_json.h"
-#include "io/text_table.h"
 
 namespace hdrf::io {
 
@@ -73,8 +73,7 @@ std::string NowUtc() {
 
 class ChunkWriter {
  public:
-  explicit ChunkWriter(const fs::path& file, const fs::path& target) : file_(target), out_(file, std::ios::binary) {
-    if (!out_) throw InputError(target, "cannot be opened for writing");
+  explicit ChunkWriter(OutputFile& out) : file_(out.target()), out_(out.stream()) {
     out_.write(kMagic, 8);
     const std::uint32_t head[2] = {std::uint32_t(kProjectVersion), 0};
     out_.write(reinterpret_cast<const char*>(head), sizeof head);
@@ -92,12 +91,11 @@ class ChunkWriter {
     Add("END ", nullptr, 0);
     out_.flush();
     if (!out_) throw InputError(file_, "write failed (disk full?)");
-    out_.close();
   }
 
  private:
   fs::path file_;
-  std::ofstream out_;
+  std::ostream& out_;
 };
 
 struct Chunk {
@@ -283,9 +281,9 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
   for (const auto& c : model.bricks()) coords.insert(coords.end(), c.begin(), c.end());
 
   fs::create_directories(file.parent_path().empty() ? fs::path(".") : file.parent_path());
-  const fs::path tmp = TemporarySibling(file);
-  try {
-    ChunkWriter w(tmp, file);
+  OutputFile out(file);
+  {
+    ChunkWriter w(out);
     w.Add("MANI", mani.data(), mani.size());
     w.Add("BRCK", coords.data(), coords.size() * sizeof(std::int32_t));
     w.Add("POOL", model.pool().data(), model.pool().size());
@@ -310,12 +308,8 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
       w.Add("REFD", point.reference_depth.data(), point.reference_depth.size() * sizeof(float));
     }
     w.Finish();
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
   }
-  CommitTemporary(tmp, file);
+  out.Commit();
 }
 
 Project LoadProject(const fs::path& file) {

@@ -8,7 +8,7 @@
 
 #include "common/error.h"
 #include "io/json_file.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 
 namespace hdrf::io {
 

@@ -6,6 +6,7 @@
 #include "io/exr.h"
 #include "io/image_io.h"
 #include "io/sensor_json.h"
+#include "io/output_file.h"
 #include "io/text_table.h"
 #include "io/tum.h"
 

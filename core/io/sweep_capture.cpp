@@ -9,7 +9,7 @@
 #include "io/json_file.h"
 #include "io/image_io.h"
 #include "io/sequence.h"
-#include "io/text_table.h"
+#include "io/output_file.h"
 
 namespace hdrf::io {
 

@@ -49,31 +49,4 @@ double ParseNumber(const std::filesystem::path& file, const TextRow& row, std::s
   return v;
 }
 
-std::filesystem::path TemporarySibling(const std::filesystem::path& file) {
-  std::filesystem::path tmp = file;
-  tmp.replace_filename("." + file.stem().string() + ".partial" + file.extension().string());
-  return tmp;
-}
-
-void CommitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& file) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(file, "cannot be written (rename failed)");
-  }
-}
-
-void WriteFileAtomically(const std::filesystem::path& file, const std::string& content) {
-  const auto tmp = TemporarySibling(file);
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(file, "cannot be opened for writing");
-    out << content;
-    out.flush();
-    if (!out) throw InputError(file, "write failed (disk full?)");
-  }
-  CommitTemporary(tmp, file);
-}
-
 }  // namespace hdrf::io

@@ -19,14 +19,4 @@ std::vector<TextRow> ReadTextTable(const std::filesystem::path& file);
 double ParseNumber(const std::filesystem::path& file, const TextRow& row, std::size_t field,
                    const char* what);
 
-// Writes `content` to `file` through a temporary file in the same folder and a rename, so
-// an interrupted write never leaves a truncated file behind.
-void WriteFileAtomically(const std::filesystem::path& file, const std::string& content);
-
-// Temporary sibling path with the same extension (for writers that pick the format from it).
-std::filesystem::path TemporarySibling(const std::filesystem::path& file);
-
-// Renames tmp over file; throws hdrf::Error naming the file on failure.
-void CommitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& file);
-
 }  // namespace hdrf::io

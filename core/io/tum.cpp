@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "io/output_file.h"
 #include "io/text_table.h"
 
 namespace hdrf::io {

@@ -6,16 +6,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "io/output_file.h"
 #include "io/project.h"
-#include "io/text_table.h"
+#include "io/ply.h"
 #include "io/tum.h"
 #include "support/test_support.h"
 
@@ -147,23 +150,28 @@ TEST_F(ProjectCli, KilledMidSaveLeavesARecoveryFileThatOpensAndResumes) {
     const auto waited = [&] { return std::chrono::steady_clock::now() - t0 > std::chrono::seconds(60); };
     while (io::FindRecoveryFiles().empty() && !waited()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     std::this_thread::sleep_for(std::chrono::milliseconds(37 * attempt));
-    const auto partial = [&] {
-      for (const fs::path& f : io::FindRecoveryFiles())
-        if (fs::exists(io::TemporarySibling(f))) return true;
-      return false;
+    // The staging files beside the recovery files (an autosave being written).
+    const auto staging = [&] {
+      std::vector<fs::path> found;
+      std::error_code ec;
+      for (const auto& e : fs::directory_iterator(io::RecoveryFolder(), ec))
+        if (io::IsStagingFile(e.path())) found.push_back(e.path());
+      return found;
     };
+    const auto partial = [&] { return !staging().empty(); };
     while (!partial() && !waited()) std::this_thread::sleep_for(std::chrono::microseconds(100));
     kill(pid, SIGKILL);
     int status = 0;
     waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFSIGNALED(status)) << "the scan ended before it was killed";
+    const std::vector<fs::path> left = staging();
+    for (const fs::path& f : left) fs::remove(f);
     for (const fs::path& f : io::FindRecoveryFiles()) {
-      if (fs::exists(io::TemporarySibling(f))) ++mid_save;
+      if (!left.empty()) ++mid_save;
       const io::Project p = io::LoadProject(f);  // throws (and fails the test) if unreadable
       EXPECT_FALSE(p.finished);
       EXPECT_GT(p.resume.frames, 0);
       ++opened;
-      fs::remove(io::TemporarySibling(f));
       last = f;
       kept = dir / ("seen-" + std::to_string(opened) + ".hdrproj");
       fs::rename(f, kept);
@@ -181,6 +189,92 @@ TEST_F(ProjectCli, KilledMidSaveLeavesARecoveryFileThatOpensAndResumes) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("after its " + std::to_string(frames) + " frames"), std::string::npos) << r.output;
   EXPECT_EQ(io::ReadTrajectory(dir / "r" / "trajectory.txt").size(), std::size_t(frames + 5));
+}
+
+// Every regular file under `dir` (links skipped) with its bytes.
+std::map<std::string, std::string> Snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && !e.is_symlink()) files[fs::relative(e.path(), dir).string()] = test::ReadText(e.path());
+  return files;
+}
+
+// A scan that fails (the source midway, a full disk, an output that may not be replaced) or
+// is cancelled (Ctrl-C) leaves the previous outputs exactly as they were; where it got far
+// enough, its model is kept in the recovery file, which exports.
+TEST_F(ProjectCli, AFailedOrCancelledScanChangesNoOutputAndKeepsTheModel) {
+  test::TempDir dir;
+  const fs::path seq = dir / "seq", out = dir / "out";
+  ASSERT_EQ(RunCli("simulate --out " + seq.string() + " --frames 12 --size 80x60").status, 0);
+  RunResult r = RunCli("scan " + seq.string() + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto before = Snapshot(out);
+  ASSERT_GE(before.size(), 10u);
+  std::size_t biggest = 0, total = 0;
+  for (const auto& [name, bytes] : before) {
+    biggest = std::max(biggest, bytes.size());
+    total += bytes.size();
+  }
+  // 1. A frame missing midway (the 7th colour image).
+  fs::copy(seq, dir / "broken", fs::copy_options::recursive);
+  std::vector<fs::path> rgb;
+  for (const auto& e : fs::directory_iterator(dir / "broken" / "rgb")) rgb.push_back(e.path());
+  std::sort(rgb.begin(), rgb.end());
+  fs::remove(rgb[6]);
+  r = RunCli("scan " + (dir / "broken").string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(rgb[6].filename().string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing in " + out.string() + " was changed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the 6 frames scanned are kept in"), std::string::npos) << r.output;
+  EXPECT_EQ(Snapshot(out), before);
+  std::vector<fs::path> kept = io::FindRecoveryFiles();
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_NE(r.output.find("hdrfusion export " + kept[0].string()), std::string::npos) << r.output;
+  const io::Project p = io::LoadProject(kept[0]);
+  EXPECT_EQ(p.resume.frames, 6);
+  EXPECT_FALSE(p.finished);
+  r = RunCli("export " + kept[0].string() + " --out " + (dir / "e").string() + " --formats ply --no-texture");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_GT(io::ReadPly(dir / "e" / "mesh.ply").triangles.size(), 100u);
+  fs::remove(kept[0]);
+  // 2. The disk fills while the outputs are written: some are complete by then, none moves.
+  r = test::RunCommand(test::WithFileSizeLimit(biggest / 2, std::string(HDRF_CLI) + " scan " + seq.string() +
+                                                                " --out " + out.string()));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("disk full"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing in " + out.string() + " was changed"), std::string::npos) << r.output;
+  EXPECT_EQ(Snapshot(out), before);
+  EXPECT_TRUE(test::StagingFiles(out).empty());
+  EXPECT_LT(biggest / 2, total - biggest) << "the limit must let other outputs complete first";
+  for (const fs::path& f : io::FindRecoveryFiles()) fs::remove(f);
+  // 3. A link planted at an output: refused, neither followed nor replaced.
+  test::WriteText(dir / "victim.txt", "precious");
+  fs::remove(out / "mesh.ply");
+  fs::create_symlink(dir / "victim.txt", out / "mesh.ply");
+  r = RunCli("scan " + seq.string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find((out / "mesh.ply").string() + ": is a symbolic link"), std::string::npos) << r.output;
+  EXPECT_EQ(test::ReadText(dir / "victim.txt"), "precious");
+  auto without_mesh = before;
+  without_mesh.erase("mesh.ply");
+  EXPECT_EQ(Snapshot(out), without_mesh);
+  fs::remove(out / "mesh.ply");
+  for (const fs::path& f : io::FindRecoveryFiles()) fs::remove(f);
+  // 4. Ctrl-C once the scan has autosaved: exit status 130, outputs unchanged, model kept.
+  const pid_t pid = Spawn(std::string(HDRF_CLI) + " scan synthetic:frames=1000,size=80x60 --out " + out.string() +
+                          " --autosave 0.2");
+  const auto t0 = std::chrono::steady_clock::now();
+  while (io::FindRecoveryFiles().empty() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(Snapshot(out), without_mesh);
+  kept = io::FindRecoveryFiles();
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_GT(io::LoadProject(kept[0]).resume.frames, 0);
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ TEST(ImageIo, ColourRoundTripIsLosslessAndRgbOrdered) {
   // OpenCV writes BGR: pixel (6, 0) red 180 must be the third byte in OpenCV's order.
   const cv::Mat m = cv::imread((dir / "c.png").string(), cv::IMREAD_UNCHANGED);
   EXPECT_EQ(m.at<cv::Vec3b>(0, 6)[2], 180);
-  EXPECT_FALSE(std::filesystem::exists(dir / ".c.partial.png"));
+  EXPECT_TRUE(test::StagingFiles(dir.path()).empty());
 }
 
 TEST(ImageIo, DepthRoundTripKeepsAll16Bits) {

@@ -9,7 +9,6 @@
 
 #include "common/error.h"
 #include "io/project.h"
-#include "io/text_table.h"
 #include "mesh/mesh.h"
 #include "pipeline/scan_session.h"
 #include "sim/synthetic_source.h"
@@ -178,7 +177,7 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
       {"good.hdrproj", "10.000000 mm", "project's own settings"});
 }
 
-// A save that cannot finish (here: the folder is read-only) leaves the earlier save intact
+// A save that cannot finish (here: the disk fills halfway) leaves the earlier save intact
 // and readable, and no partial file behind.
 TEST(Project, AFailedSaveKeepsTheEarlierSave) {
   test::TempDir dir;
@@ -189,9 +188,12 @@ TEST(Project, AFailedSaveKeepsTheEarlierSave) {
   io::SaveProject(file, s, {"test", "", false});
   const std::string before = test::ReadText(file);
   for (int i = 3; i < 6; ++i) s.Process(test::AsInput(frames[std::size_t(i)]));
-  // A directory where the temporary file would go: the write cannot start.
-  fs::create_directories(io::TemporarySibling(file));
-  EXPECT_THROW(io::SaveProject(file, s, {"test", "", false}), Error);
+  {
+    const test::FileSizeLimit full(before.size() / 2);
+    test::ExpectErrorContaining([&] { io::SaveProject(file, s, {"test", "", false}); },
+                                {file.string(), "disk full"});
+  }
+  EXPECT_TRUE(test::StagingFiles(dir.path()).empty());
   EXPECT_EQ(test::ReadText(file), before);
   EXPECT_EQ(io::LoadProject(file).resume.frames, 3);
 }

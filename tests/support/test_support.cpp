@@ -1,8 +1,10 @@
 #include "support/test_support.h"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -10,6 +12,8 @@
 #include <memory>
 #include <fstream>
 #include <random>
+
+#include "io/output_file.h"
 #include <sstream>
 
 namespace hdrf::test {
@@ -100,6 +104,39 @@ bool EnsureDisplay(int argc, char** argv) {
     execvp("xvfb-run", args.data());
   }
   return !listing && !unset("DISPLAY");
+}
+
+FileSizeLimit::FileSizeLimit(unsigned long long bytes) {
+  rlimit r{};
+  getrlimit(RLIMIT_FSIZE, &r);
+  cur_ = r.rlim_cur;
+  max_ = r.rlim_max;
+  previous_ = std::signal(SIGXFSZ, SIG_IGN);
+  r.rlim_cur = bytes;
+  setrlimit(RLIMIT_FSIZE, &r);
+}
+
+FileSizeLimit::~FileSizeLimit() {
+  rlimit r{};
+  r.rlim_cur = cur_;
+  r.rlim_max = max_;
+  setrlimit(RLIMIT_FSIZE, &r);
+  std::signal(SIGXFSZ, previous_);
+}
+
+std::string WithFileSizeLimit(unsigned long long bytes, const std::string& command) {
+  // bash's ulimit -f counts 1024-byte blocks; an ignored SIGXFSZ stays ignored across exec.
+  return "bash -c 'trap \"\" XFSZ; ulimit -f " + std::to_string((bytes + 1023) / 1024) + "; exec \"$0\" \"$@\"' " +
+         command;
+}
+
+std::vector<std::filesystem::path> StagingFiles(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> found;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (io::IsStagingFile(it->path())) found.push_back(it->path());
+  return found;
 }
 
 }  // namespace hdrf::test

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace hdrf::test {
 
@@ -44,6 +45,26 @@ CommandResult RunCommand(const std::string& command);
 // this program under `xvfb-run` (once; never when only listing tests) and does not return.
 // Returns whether a display is there now (false: xvfb-run is missing, the tests skip).
 bool EnsureDisplay(int argc, char** argv);
+
+// A full disk, as the process sees it: while one lives, writing a file beyond `bytes` fails
+// (RLIMIT_FSIZE, with SIGXFSZ ignored so that the write returns EFBIG instead of killing).
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(unsigned long long bytes);
+  ~FileSizeLimit();
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  unsigned long long cur_, max_;
+  void (*previous_)(int);
+};
+
+// The command prefix that runs a program with the same full disk (a shell's `ulimit -f`).
+std::string WithFileSizeLimit(unsigned long long bytes, const std::string& command);
+
+// The staging files (io/output_file.h) in `folder`: what a failed write must not leave.
+std::vector<std::filesystem::path> StagingFiles(const std::filesystem::path& folder);
 
 // Runs fn, expects it to throw a std::exception whose message contains every needle.
 // Returns the message.

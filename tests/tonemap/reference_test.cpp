@@ -11,7 +11,6 @@
 
 #include "eval/image_quality.h"
 #include "io/exr.h"
-#include "io/text_table.h"
 #include "pipeline/scan_session.h"
 #include "sim/sensor_model.h"
 #include "sim/synthetic_source.h"

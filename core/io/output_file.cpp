@@ -1,0 +1,160 @@
+#include "io/output_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <ext/stdio_filebuf.h>
+#include <fcntl.h>
+#include <random>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "common/error.h"
+
+namespace hdrf::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+thread_local OutputSet* g_current_set = nullptr;
+
+constexpr char kSuffix[] = ".partial";
+constexpr std::size_t kRandomChars = 12;  // 6 bits each
+
+std::string RandomChars() {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-";
+  thread_local std::mt19937_64 rng([] {
+    std::random_device rd;
+    std::seed_seq seq{rd(), rd(), rd(), rd(), unsigned(getpid())};
+    return std::mt19937_64(seq);
+  }());
+  std::string s(kRandomChars, 'x');
+  for (char& c : s) c = kAlphabet[rng() % 64];
+  return s;
+}
+
+void RemoveQuietly(const fs::path& p) {
+  if (!p.empty()) ::unlink(p.c_str());
+}
+
+}  // namespace
+
+void CheckReplaceable(const fs::path& file) {
+  struct stat st {};
+  if (::lstat(file.c_str(), &st) != 0) return;  // absent (or unreadable: the rename will say)
+  if (S_ISREG(st.st_mode)) return;
+  if (S_ISLNK(st.st_mode))
+    throw InputError(file, "is a symbolic link: outputs are never written through links nor replace them (remove it, "
+                           "or write to the file it points to by its own name)");
+  if (S_ISDIR(st.st_mode)) throw InputError(file, "is a folder: an output file cannot replace it");
+  throw InputError(file, "is a device, pipe or socket, not a regular file: an output cannot replace it");
+}
+
+bool IsStagingFile(const fs::path& p) {
+  const std::string n = p.filename().string();
+  const std::size_t tail = 1 + kRandomChars + (sizeof kSuffix - 1);
+  return n.size() > tail + 1 && n[0] == '.' && n.compare(n.size() - (sizeof kSuffix - 1), std::string::npos, kSuffix) == 0 &&
+         n[n.size() - tail] == '.';
+}
+
+struct OutputFile::Impl {
+  explicit Impl(int fd) : fd(fd), buf(fd, std::ios::out | std::ios::binary, 1 << 16), out(&buf) {}
+  int fd;
+  __gnu_cxx::stdio_filebuf<char> buf;  // closes fd when destroyed
+  std::ostream out;
+};
+
+OutputFile::OutputFile(fs::path target) : target_(std::move(target)) {
+  CheckReplaceable(target_);
+  const fs::path folder = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    const fs::path name = folder / ("." + target_.filename().string() + "." + RandomChars() + kSuffix);
+    const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      staging_ = name;
+      impl_ = std::make_unique<Impl>(fd);
+      return;
+    }
+    if (errno != EEXIST)
+      throw InputError(target_, std::string("cannot be written: cannot create a file in its folder (") +
+                                    std::strerror(errno) + ")");
+  }
+  throw InputError(target_, "cannot be written: no free temporary name beside it");
+}
+
+OutputFile::~OutputFile() {
+  impl_.reset();
+  if (!done_) RemoveQuietly(staging_);
+}
+
+std::ostream& OutputFile::stream() { return impl_->out; }
+
+void OutputFile::Write(std::string_view bytes) {
+  impl_->out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!impl_->out) throw InputError(target_, "write failed (disk full?)");
+}
+
+void OutputFile::Commit() {
+  if (done_) return;
+  impl_->out.flush();
+  bool ok = bool(impl_->out) && impl_->buf.fd() >= 0 && ::fsync(impl_->buf.fd()) == 0;
+  ok = impl_->buf.close() != nullptr && ok;
+  impl_.reset();
+  if (!ok) throw InputError(target_, "write failed (disk full?)");
+  if (OutputSet* set = OutputSet::Current()) {
+    set->Stage(staging_, target_);
+    done_ = true;  // the set owns the staging file now
+    return;
+  }
+  CheckReplaceable(target_);
+  if (::rename(staging_.c_str(), target_.c_str()) != 0)
+    throw InputError(target_, std::string("cannot be written (rename failed: ") + std::strerror(errno) + ")");
+  done_ = true;
+}
+
+OutputSet::OutputSet() {
+  if (g_current_set)
+    outer_ = g_current_set;
+  else
+    g_current_set = this;
+}
+
+OutputSet::~OutputSet() {
+  if (outer_) return;
+  g_current_set = nullptr;
+  if (!committed_)
+    for (const Staged& s : staged_) RemoveQuietly(s.staging);
+}
+
+OutputSet* OutputSet::Current() { return g_current_set; }
+
+void OutputSet::Stage(fs::path staging, fs::path target) {
+  staged_.push_back({std::move(staging), std::move(target)});
+}
+
+void OutputSet::Commit() {
+  if (outer_) return;
+  // Everything that can be checked before the first file moves: a half-replaced set would mix
+  // two runs' outputs.
+  for (const Staged& s : staged_) CheckReplaceable(s.target);
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    if (::rename(staged_[i].staging.c_str(), staged_[i].target.c_str()) != 0) {
+      const int err = errno;
+      for (std::size_t j = i; j < staged_.size(); ++j) RemoveQuietly(staged_[j].staging);
+      committed_ = true;
+      throw InputError(staged_[i].target, std::string("cannot be moved into place (") + std::strerror(err) + "); " +
+                                              std::to_string(i) + " of the " + std::to_string(staged_.size()) +
+                                              " outputs before it were replaced");
+    }
+  }
+  committed_ = true;
+  g_current_set = nullptr;
+}
+
+void WriteFileAtomically(const fs::path& file, std::string_view content) {
+  OutputFile f(file);
+  f.Write(content);
+  f.Commit();
+}
+
+}  // namespace hdrf::io

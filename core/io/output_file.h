@@ -1,0 +1,80 @@
+// How every output file is written: never through a name someone else can plant, never
+// half-written, and, for a command's whole set of outputs, all or nothing.
+//
+// An OutputFile is written beside its target under a name with 72 random bits, created
+// exclusively (O_CREAT | O_EXCL | O_NOFOLLOW: a file or link already at that name makes the
+// creation fail instead of being written through), flushed to the disk, and renamed onto the
+// target only when complete. A target that exists and is not a regular file (a device, a
+// pipe, a socket, a folder, a symbolic link) is refused, never replaced.
+//
+// While an OutputSet is open on a thread, the files committed on that thread wait for the
+// set's Commit, which moves them all into place; a set destroyed without Commit (an error
+// or a cancel while writing) removes them, so the previous outputs stay exactly as they were.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hdrf::io {
+
+class OutputFile {
+ public:
+  // Creates the staging file beside `target` (whose folder must exist). Throws InputError
+  // naming the target if it cannot be created or the target may not be replaced.
+  explicit OutputFile(std::filesystem::path target);
+  ~OutputFile();  // removes the staging file unless committed
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  std::ostream& stream();
+  void Write(std::string_view bytes);  // throws InputError naming the target on failure
+  const std::filesystem::path& target() const { return target_; }
+
+  // Flushes, syncs and closes the file, then renames it onto the target (or hands it to the
+  // thread's open OutputSet). Throws InputError naming the target on any failure (disk full),
+  // leaving the target as it was.
+  void Commit();
+
+ private:
+  struct Impl;
+  std::filesystem::path target_, staging_;
+  std::unique_ptr<Impl> impl_;
+  bool done_ = false;
+};
+
+class OutputSet {
+ public:
+  OutputSet();   // a set opened inside another joins it: the outer one commits
+  ~OutputSet();  // removes every staged file unless committed
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+  void Commit();  // moves every staged file onto its target, in the order they were committed
+
+  // Used by OutputFile::Commit: the set open on this thread, or null.
+  static OutputSet* Current();
+  void Stage(std::filesystem::path staging, std::filesystem::path target);
+
+ private:
+  struct Staged {
+    std::filesystem::path staging, target;
+  };
+  std::vector<Staged> staged_;
+  OutputSet* outer_ = nullptr;
+  bool committed_ = false;
+};
+
+// Writes `content` to `file` as one OutputFile.
+void WriteFileAtomically(const std::filesystem::path& file, std::string_view content);
+
+// Whether `p` is the name of a staging file (what a killed process can leave behind).
+bool IsStagingFile(const std::filesystem::path& p);
+
+// Throws InputError if `file` exists and is not a regular file (it would be replaced by a
+// rename or written through): outputs are only ever regular files.
+void CheckReplaceable(const std::filesystem::path& file);
+
+}  // namespace hdrf::io
