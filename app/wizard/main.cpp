@@ -5,14 +5,45 @@
 // that cannot go on (exit 1, the reason on stderr).
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QCoreApplication>
 #include <QTimer>
 #include <cstdio>
 
 #include "calibration_wizard/calibration_wizard.h"
 
+namespace {
+
+// The command line, parsed by whichever application object there is: --help and --version
+// work without a display.
+struct CommandLine {
+  QCommandLineParser p;
+  QCommandLineOption source{"source",
+                            "openni:[device=SERIAL,mode=vga|qvga,unit=MS], synthetic[:response=NAME|FILE.json,"
+                            "scene=room|desk,size=WxH], or a recorded sweep folder",
+                            "SPEC"};
+  QCommandLineOption sweep{"sweep-folder", "Where the capture writes the sweep", "DIR"};
+  QCommandLineOption report{"report", "Where the report is written", "DIR"};
+  QCommandLineOption step{"step", "Stops between exposures (default 0.5)", "STOPS"};
+  QCommandLineOption repeats{"repeats", "Frames per exposure (default 5)", "N"};
+  QCommandLineOption method{"method", "debevec (default), robertson or emor", "METHOD"};
+  QCommandLineOption basis{"emor-basis", "invemor.txt for --method emor", "FILE"};
+  QCommandLineOption automatic{"auto", "Run every page with its defaults, save, and quit"};
+  QCommandLineOption shots{"screenshots", "Save each page as a PNG into DIR", "DIR"};
+  CommandLine() {
+    p.setApplicationDescription("Guided camera calibration: exposure sweep, response, noise, profile");
+    p.addHelpOption();
+    p.addOptions({source, sweep, report, step, repeats, method, basis, automatic, shots});
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
       qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+    QCoreApplication core(argc, argv);
+    CommandLine c;
+    c.p.process(core);  // --help exits here
     std::fprintf(stderr,
                  "hdrfusion-calibration-wizard: no display here (DISPLAY is not set). Run it on a desktop, under "
                  "xvfb-run, or with QT_QPA_PLATFORM=offscreen together with --auto; headless, the same steps are "
@@ -22,33 +53,19 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusion");
   QApplication::setApplicationName("HDRFusion Calibration");
-  QCommandLineParser p;
-  p.setApplicationDescription("Guided camera calibration: exposure sweep, response, noise, profile");
-  p.addHelpOption();
-  QCommandLineOption source("source",
-                            "openni:[device=SERIAL,mode=vga|qvga,unit=MS], synthetic[:response=NAME|FILE.json,"
-                            "scene=room|desk,size=WxH], or a recorded sweep folder",
-                            "SPEC");
-  QCommandLineOption sweep("sweep-folder", "Where the capture writes the sweep", "DIR");
-  QCommandLineOption report("report", "Where the report is written", "DIR");
-  QCommandLineOption step("step", "Stops between exposures (default 0.5)", "STOPS");
-  QCommandLineOption repeats("repeats", "Frames per exposure (default 5)", "N");
-  QCommandLineOption method("method", "debevec (default), robertson or emor", "METHOD");
-  QCommandLineOption basis("emor-basis", "invemor.txt for --method emor", "FILE");
-  QCommandLineOption automatic("auto", "Run every page with its defaults, save, and quit");
-  QCommandLineOption shots("screenshots", "Save each page as a PNG into DIR", "DIR");
-  p.addOptions({source, sweep, report, step, repeats, method, basis, automatic, shots});
+  CommandLine c;
+  QCommandLineParser& p = c.p;
   p.process(app);
   hdrf::wizard::WizardSettings o;
-  o.source = p.value(source);
-  o.sweep_folder = p.value(sweep);
-  o.report_folder = p.value(report);
-  o.automatic = p.isSet(automatic);
-  o.screenshots = p.value(shots);
-  if (p.isSet(step)) o.plan.step_stops = p.value(step).toDouble();
-  if (p.isSet(repeats)) o.plan.repeats = p.value(repeats).toInt();
-  if (p.isSet(method)) o.method = p.value(method);
-  o.emor_basis = p.value(basis);
+  o.source = p.value(c.source);
+  o.sweep_folder = p.value(c.sweep);
+  o.report_folder = p.value(c.report);
+  o.automatic = p.isSet(c.automatic);
+  o.screenshots = p.value(c.shots);
+  if (p.isSet(c.step)) o.plan.step_stops = p.value(c.step).toDouble();
+  if (p.isSet(c.repeats)) o.plan.repeats = p.value(c.repeats).toInt();
+  if (p.isSet(c.method)) o.method = p.value(c.method);
+  o.emor_basis = p.value(c.basis);
   try {
     o.plan.Check();
   } catch (const std::exception& e) {

@@ -13,18 +13,29 @@
 #include <cmath>
 #include <vector>
 
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 
 namespace hdrf::io {
 
+namespace {
+// The data window's size, checked before any pixel is allocated.
+std::pair<int, int> CheckedSize(const std::filesystem::path& file, const Imath::Box2i& dw, int bytes_per_pixel) {
+  const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
+  CheckImageDimensions(file, w, h, bytes_per_pixel);
+  return {int(w), int(h)};
+}
+
+void CheckExrFile(const std::filesystem::path& file) { CheckInputFile(file, 4 * kMaxImageBytes, "an OpenEXR image"); }
+}  // namespace
+
 RadianceImage ReadExr(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) throw InputError(file, "OpenEXR file is missing");
+  CheckExrFile(file);
   try {
     Imf::InputFile in(file.string().c_str());
     const Imath::Box2i dw = in.header().dataWindow();
-    const int w = dw.max.x - dw.min.x + 1;
-    const int h = dw.max.y - dw.min.y + 1;
+    const auto [w, h] = CheckedSize(file, dw, sizeof(Float3));
     const Imf::ChannelList& ch = in.header().channels();
     const bool rgb = ch.findChannel("R") && ch.findChannel("G") && ch.findChannel("B");
     const bool y_only = !rgb && ch.findChannel("Y");
@@ -130,11 +141,11 @@ void WriteExr(const std::filesystem::path& file, const RadianceImage& image, con
 }
 
 Image<float> ReadExrChannel(const std::filesystem::path& file, const std::string& name) {
-  if (!std::filesystem::exists(file)) throw InputError(file, "OpenEXR file is missing");
+  CheckExrFile(file);
   try {
     Imf::InputFile in(file.string().c_str());
     const Imath::Box2i dw = in.header().dataWindow();
-    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    const auto [w, h] = CheckedSize(file, dw, sizeof(float));
     if (!in.header().channels().findChannel(name)) throw InputError(file, "OpenEXR file has no channel '" + name + "'");
     Image<float> out(w, h);
     char* base = reinterpret_cast<char*>(out.data()) - (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * sizeof(float);
@@ -151,6 +162,7 @@ Image<float> ReadExrChannel(const std::filesystem::path& file, const std::string
 }
 
 std::optional<std::string> ReadExrAttribute(const std::filesystem::path& file, const std::string& name) {
+  CheckExrFile(file);
   try {
     Imf::InputFile in(file.string().c_str());
     const auto* a = in.header().findTypedAttribute<Imf::StringAttribute>(name);

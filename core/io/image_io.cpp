@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 
@@ -24,15 +25,22 @@ const char* DepthName(int cv_depth) {
   }
 }
 
-cv::Mat Load(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) throw InputError(file, "image file is missing");
+// The file read once, its header's size checked (against this program's limits, the free
+// memory, and `check_header` where given) before anything is decoded.
+cv::Mat Load(const std::filesystem::path& file, const HeaderCheck& check_header) {
+  const std::string bytes = ReadInputFile(file, kMaxImageBytes, "an image");
+  if (const std::optional<ImageHeader> h = PeekImageHeader(file, bytes)) {
+    CheckImageDimensions(file, h->width, h->height, h->bytes_per_pixel);
+    if (check_header) check_header(h->width, h->height);
+  }
   cv::Mat m;
   try {
-    m = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+    m = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
     throw InputError(file, std::string("cannot be decoded as an image: ") + e.what());
   }
   if (m.empty()) throw InputError(file, "cannot be decoded as an image (corrupt or truncated?)");
+  if (check_header) check_header(m.cols, m.rows);
   return m;
 }
 
@@ -50,8 +58,8 @@ void Save(const std::filesystem::path& file, const cv::Mat& m) {
 
 }  // namespace
 
-ColorImage ReadColorImage(const std::filesystem::path& file) {
-  cv::Mat m = Load(file);
+ColorImage ReadColorImage(const std::filesystem::path& file, const HeaderCheck& check_header) {
+  cv::Mat m = Load(file, check_header);
   if (m.depth() != CV_8U)
     throw InputError(file, std::string("colour image must be 8-bit, found ") +
                                DepthName(m.depth()));
@@ -66,8 +74,8 @@ ColorImage ReadColorImage(const std::filesystem::path& file) {
   return out;
 }
 
-DepthRawImage ReadDepthImage(const std::filesystem::path& file) {
-  cv::Mat m = Load(file);
+DepthRawImage ReadDepthImage(const std::filesystem::path& file, const HeaderCheck& check_header) {
+  cv::Mat m = Load(file, check_header);
   if (m.depth() != CV_16U)
     throw InputError(file, std::string("depth image must be 16-bit unsigned, found ") +
                                DepthName(m.depth()));
@@ -98,6 +106,10 @@ std::vector<std::uint8_t> EncodeColorPng(const ColorImage& image) {
 
 ColorImage DecodeColorPng(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes,
                           const std::string& what) {
+  const std::string head(reinterpret_cast<const char*>(bytes.data()), std::min<std::size_t>(bytes.size(), 64));
+  const std::optional<ImageHeader> h = PeekImageHeader(file, head);
+  if (!h) throw InputError(file, what + " is not a PNG image");
+  CheckImageDimensions(file, h->width, h->height, h->bytes_per_pixel);
   const cv::Mat m = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   if (m.empty() || m.depth() != CV_8U || m.channels() != 3)
     throw InputError(file, what + " is not an 8-bit RGB PNG image");

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,14 +11,20 @@
 
 namespace hdrf::io {
 
+// Called with an image's width and height from its header, before it is decoded (and again
+// after, for formats whose header is not read): throws to refuse the image.
+using HeaderCheck = std::function<void(int width, int height)>;
+
 // 8-bit, 3-channel colour (an alpha channel is dropped). Throws InputError naming the file
-// when it is missing, unreadable, or has the wrong bit depth or channel count.
-ColorImage ReadColorImage(const std::filesystem::path& file);
+// when it is missing, not a regular file, larger than io/input_file.h allows (bytes, or
+// pixels from its header, or more than the free memory holds), unreadable, or has the wrong
+// bit depth or channel count.
+ColorImage ReadColorImage(const std::filesystem::path& file, const HeaderCheck& check_header = {});
 
 // 16-bit, 1-channel depth in sensor units. Same checks as above.
-DepthRawImage ReadDepthImage(const std::filesystem::path& file);
+DepthRawImage ReadDepthImage(const std::filesystem::path& file, const HeaderCheck& check_header = {});
 
-// Lossless PNG writers (through a temporary file and a rename).
+// Lossless PNG writers (through an exclusive staging file and a rename: io/output_file.h).
 void WriteColorPng(const std::filesystem::path& file, const ColorImage& image);
 void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image);
 // The PNG bytes of a colour image (for containers such as glTF binaries).

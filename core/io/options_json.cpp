@@ -17,7 +17,9 @@ namespace {
 // A JSON value of the setting's type, as the registry's text; throws naming the key.
 std::string ValueText(const std::filesystem::path& file, const Setting& s, const json& v) {
   auto wrong = [&](const char* expected) {
-    return InputError(file, "'" + s.key + "' must be " + expected + " (" + s.Range() + "), found " + v.dump());
+    const std::string range = s.Range();
+    return InputError(file, "'" + s.key + "' must be " + expected + (range == expected ? "" : " (" + range + ")") +
+                                ", found " + v.dump());
   };
   switch (s.kind) {
     case SettingKind::kBool:

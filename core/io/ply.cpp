@@ -1,9 +1,11 @@
 #include "io/ply.h"
 
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 #include "tonemap/display.h"
@@ -66,9 +68,21 @@ void WritePly(const std::filesystem::path& file, const mesh::Mesh& m, const std:
   out.Commit();
 }
 
+namespace {
+// An element count: digits only, and no more than the file could hold.
+std::size_t Count(const std::filesystem::path& file, int line_no, const std::string& text, std::uintmax_t file_size) {
+  std::size_t v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || v > file_size)
+    throw InputError(file, line_no, "element count '" + text + "' is not a count this file can hold");
+  return v;
+}
+}  // namespace
+
 mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>* flags_out) {
+  const std::uintmax_t file_size = CheckInputFile(file, std::uintmax_t(64) << 30, "a mesh");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
+  if (!in) throw InputError(file, "cannot be opened");
   std::string line;
   std::size_t nv = 0, nf = 0;
   int line_no = 0, prop = 0;
@@ -80,10 +94,10 @@ mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>*
     if (line.rfind("format", 0) == 0 && line != "format binary_little_endian 1.0")
       throw InputError(file, line_no, "only binary little-endian PLY is read, found '" + line + "'");
     if (line.rfind("element vertex ", 0) == 0) {
-      nv = std::stoull(line.substr(15));
+      nv = Count(file, line_no, line.substr(15), file_size);
       in_vertex = true;
     } else if (line.rfind("element face ", 0) == 0) {
-      nf = std::stoull(line.substr(13));
+      nf = Count(file, line_no, line.substr(13), file_size);
       in_vertex = false;
     } else if (in_vertex && line.rfind("property ", 0) == 0) {
       if (prop > 12 || (prop < 12 && line.substr(9) != kVertexProps[prop]) || (prop == 12 && line.substr(9) != kFlagProp))
@@ -92,11 +106,16 @@ mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>*
     }
   }
   if (prop != 12 && prop != 13) throw InputError(file, "vertex properties do not follow the HDR PLY layout (docs/formats.md)");
+  // The counts must fit in the file before anything is allocated for them.
+  const std::size_t record = prop == 13 ? 40 : 39;
+  const std::uintmax_t header_end = std::uintmax_t(in.tellg());
+  if (double(nv) * double(record) + double(nf) * 13.0 > double(file_size - std::min(file_size, header_end)))
+    throw InputError(file, "its header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                               " faces, more than the file's " + std::to_string(file_size) + " bytes hold (truncated?)");
   mesh::Mesh m;
   m.position.resize(nv);
   m.normal.resize(nv);
   m.radiance.resize(nv);
-  const std::size_t record = prop == 13 ? 40 : 39;
   if (flags_out) flags_out->assign(nv, 0);
   for (std::size_t i = 0; i < nv; ++i) {
     char rec[40];

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 #include "io/image_io.h"
@@ -104,8 +105,9 @@ struct Chunk {
 };
 
 std::vector<Chunk> ReadChunks(const fs::path& file) {
+  CheckInputFile(file, std::uintmax_t(1) << 40, "a project file");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, fs::exists(file) ? "cannot be opened" : "does not exist");
+  if (!in) throw InputError(file, "cannot be opened");
   char magic[8] = {};
   std::uint32_t head[2] = {};
   in.read(magic, 8);
@@ -135,7 +137,11 @@ std::vector<Chunk> ReadChunks(const fs::path& file) {
     c.data.resize(size);
     if (size > 0) in.read(reinterpret_cast<char*>(c.data.data()), std::streamsize(size));
     if (!in) throw InputError(file, "is truncated inside chunk '" + c.tag + "'");
+#ifndef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
     if (Crc(c.data.data(), c.data.size()) != crc) throw InputError(file, "chunk '" + c.tag + "' is damaged (CRC mismatch)");
+#else
+    (void)crc;
+#endif
     chunks.push_back(std::move(c));
   }
   return chunks;

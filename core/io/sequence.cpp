@@ -91,18 +91,18 @@ Frame SequenceReader::ReadFrame(std::size_t i) const {
                 std::to_string(frames_.size()) + " frames (" + folder_.string() + ")");
   Frame f;
   f.info = frames_[i];
-  f.color = ReadColorImage(f.info.color_path);
   const PinholeCamera& cam = sensor_.camera;
-  auto check_size = [&](const fs::path& p, int w, int h) {
-    if (w != cam.width || h != cam.height)
-      throw InputError(p, "image is " + std::to_string(w) + "x" + std::to_string(h) +
-                              " but sensor.json says " + std::to_string(cam.width) + "x" +
-                              std::to_string(cam.height));
+  // The size is checked from the header, before a frame is decoded.
+  auto check_size = [&](const fs::path& p) {
+    return [&cam, p](int w, int h) {
+      if (w != cam.width || h != cam.height)
+        throw InputError(p, "image is " + std::to_string(w) + "x" + std::to_string(h) + " but sensor.json says " +
+                                std::to_string(cam.width) + "x" + std::to_string(cam.height));
+    };
   };
-  check_size(f.info.color_path, f.color.width(), f.color.height());
+  f.color = ReadColorImage(f.info.color_path, check_size(f.info.color_path));
   if (!f.info.depth_path.empty()) {
-    const DepthRawImage raw = ReadDepthImage(f.info.depth_path);
-    check_size(f.info.depth_path, raw.width(), raw.height());
+    const DepthRawImage raw = ReadDepthImage(f.info.depth_path, check_size(f.info.depth_path));
     f.depth_m = DepthToMetres(raw, sensor_.depth_scale);
   }
   return f;

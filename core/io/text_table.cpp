@@ -6,15 +6,12 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "io/input_file.h"
 
 namespace hdrf::io {
 
 std::vector<TextRow> ReadTextTable(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) {
-    throw InputError(file, std::filesystem::exists(file) ? "cannot be opened for reading"
-                                                         : "file is missing");
-  }
+  std::istringstream in(ReadInputFile(file, kMaxTextBytes, "a text table"));
   std::vector<TextRow> rows;
   std::string text;
   int line = 0;

@@ -42,6 +42,13 @@ std::vector<ListEntry> ReadImageList(const std::filesystem::path& file) {
     CheckFieldCount(file, row, 2, 2, "timestamp path");
     const double t = ParseNumber(file, row, 0, "timestamp");
     CheckIncreasing(file, row, out.empty() ? 0 : out.back().timestamp, t, out.empty());
+    // Images lie inside the sequence folder: a list cannot send the reader elsewhere.
+    const std::filesystem::path image(row.fields[1]);
+    bool up = false;
+    for (const auto& part : image) up = up || part == "..";
+    if (image.is_absolute() || up)
+      throw InputError(file, row.line, "image path '" + row.fields[1] +
+                                           "' leaves the sequence folder (paths are relative to it, without '..')");
     out.push_back({t, row.fields[1], row.line});
   }
   if (out.empty()) throw InputError(file, "lists no frames");

@@ -121,7 +121,9 @@ const OperatorDecl& FindOperator(const std::string& key) {
 Params ResolveParams(const OperatorDecl& op, const Params& values) {
   Params out;
   for (const auto& p : op.params) out[p.key] = p.def;
-  for (const auto& [key, v] : values) {
+  for (const auto& entry : values) {
+    const std::string& key = entry.first;  // a plain reference: lambdas may capture it in every compiler
+    const double v = entry.second;
     auto it = std::find_if(op.params.begin(), op.params.end(), [&](const ParamDecl& p) { return p.key == key; });
     if (it == op.params.end()) {
       std::string known;

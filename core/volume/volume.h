@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/host_memory.h"
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
@@ -66,9 +67,6 @@ class BrickTable {
   std::vector<int> values_;
   std::size_t size_ = 0;
 };
-
-// Bytes of host memory the system could give now (MemAvailable), or nullopt where unknown.
-std::optional<std::size_t> AvailableHostBytes();
 
 class Volume {
  public:

@@ -413,6 +413,13 @@ TEST(StudioProgram, HelpNeedsNoDisplay) {
   r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_STUDIO_BINARY " --sorce x 2>&1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("sorce"), std::string::npos) << r.output;
+  // The calibration wizard likewise; without --help it says why it cannot start.
+  r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_WIZARD_BINARY " --help 2>&1");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--sweep-folder"), std::string::npos) << r.output;
+  r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_WIZARD_BINARY " 2>&1");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("no display here"), std::string::npos) << r.output;
 }
 
 }  // namespace

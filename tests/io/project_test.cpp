@@ -167,7 +167,7 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   test::ExpectErrorContaining([&] { io::LoadProject(dir / "newer.hdrproj"); }, {"version 99", "newer HDRFusion"});
   test::WriteText(dir / "other.hdrproj", "ply\nformat ascii 1.0\n");
   test::ExpectErrorContaining([&] { io::LoadProject(dir / "other.hdrproj"); }, {"other.hdrproj", "not an HDRFusion project"});
-  test::ExpectErrorContaining([&] { io::LoadProject(dir / "none.hdrproj"); }, {"none.hdrproj", "does not exist"});
+  test::ExpectErrorContaining([&] { io::LoadProject(dir / "none.hdrproj"); }, {"none.hdrproj", "file is missing"});
   // The source it came from: the same spec; another auto exposure is another source.
   EXPECT_TRUE(io::SameSource(p, "synthetic:frames=4", "anything"));
   EXPECT_FALSE(io::SameSource(p, "synthetic:frames=4,ae=smooth", "anything"));

@@ -1,0 +1,144 @@
+// Limits on what is read (io/input_file.h): sizes from headers before decoding, file sizes,
+// special files, paths that leave the sequence folder.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+
+#include "common/error.h"
+#include "io/exr.h"
+#include "io/image_io.h"
+#include "io/json_file.h"
+#include "io/ply.h"
+#include "io/sensor_json.h"
+#include "io/sequence.h"
+#include "io/tum.h"
+#include "support/test_support.h"
+
+namespace hdrf::io {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ExpectErrorContaining;
+using test::TempDir;
+
+long PeakRssKib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+// A valid small PNG whose header is then made to claim w x h (the pixel data stays small).
+void WriteLyingPng(const fs::path& file, std::uint32_t w, std::uint32_t h) {
+  WriteColorPng(file, ColorImage(8, 8));
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  const unsigned char be[8] = {std::uint8_t(w >> 24), std::uint8_t(w >> 16), std::uint8_t(w >> 8), std::uint8_t(w),
+                               std::uint8_t(h >> 24), std::uint8_t(h >> 16), std::uint8_t(h >> 8), std::uint8_t(h)};
+  f.seekp(16);
+  f.write(reinterpret_cast<const char*>(be), 8);
+}
+
+// A 3-frame 64x48 sequence.
+void WriteSequence(const fs::path& folder) {
+  SensorInfo sensor;
+  sensor.camera = {64, 48, 50, 50, 31.5f, 23.5f};
+  sensor.depth_scale = 5000;
+  SequenceWriter w(folder, sensor);
+  const ColorImage color(64, 48);
+  DepthRawImage depth(64, 48);
+  for (std::size_t i = 0; i < depth.size(); ++i) depth[i] = 10000;
+  for (int i = 0; i < 3; ++i) w.Add(i / 30.0, color, &depth, 10.0, Pose::Identity(), nullptr);
+}
+
+TEST(InputLimits, ImageSizesAreCheckedFromTheHeaderBeforeDecoding) {
+  TempDir dir;
+  WriteLyingPng(dir / "huge.png", 30000, 30000);
+  EXPECT_LT(fs::file_size(dir / "huge.png"), 1000u);
+  const long before = PeakRssKib();
+  ExpectErrorContaining([&] { ReadColorImage(dir / "huge.png"); },
+                        {(dir / "huge.png").string(), "claims 30000x30000 pixels, more than this program reads"});
+  // In a sequence, a frame of the wrong size is refused from its header: 16000x16000 is
+  // within the program's limits but would cost 2.3 GB to decode.
+  WriteSequence(dir / "seq");
+  const SequenceReader seq(dir / "seq");
+  ASSERT_EQ(seq.ReadFrame(1).color.width(), 64);
+  WriteLyingPng(seq.frames()[1].color_path, 16000, 16000);
+  ExpectErrorContaining([&] { seq.ReadFrame(1); },
+                        {seq.frames()[1].color_path.string(), "image is 16000x16000 but sensor.json says 64x48"});
+  const long grew_mib = (PeakRssKib() - before) / 1024;
+  std::printf("peak memory grew by %ld MiB while refusing both images\n", grew_mib);
+  EXPECT_LT(grew_mib, 64);
+  // A header too short to be a PNG's is named as such.
+  test::WriteText(dir / "cut.png", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
+  ExpectErrorContaining([&] { ReadColorImage(dir / "cut.png"); }, {"cut.png", "without its header"});
+}
+
+TEST(InputLimits, SpecialFilesAndPathsOutsideTheSequenceAreRefused) {
+  TempDir dir;
+  WriteSequence(dir / "seq");
+  // A pipe where an image should be: refused at once, not waited on.
+  ASSERT_EQ(::mkfifo((dir / "seq" / "rgb" / "pipe.png").c_str(), 0644), 0);
+  ExpectErrorContaining([&] { ReadColorImage(dir / "seq" / "rgb" / "pipe.png"); }, {"pipe.png", "not a regular file"});
+  ExpectErrorContaining([&] { ReadColorImage("/dev/zero"); }, {"/dev/zero", "not a regular file"});
+  ExpectErrorContaining([&] { ReadJsonFile(dir / "seq"); }, {"is a folder"});
+  // Lists that leave the sequence folder.
+  const std::string good = test::ReadText(dir / "seq" / "rgb.txt");
+  for (const std::string& bad : {"/dev/zero", "../../etc/passwd", "rgb/../../x.png"}) {
+    std::string list = good;
+    const std::size_t at = list.find("rgb/", list.rfind('#') == std::string::npos ? 0 : list.find('\n', list.rfind('#')));
+    ASSERT_NE(at, std::string::npos);
+    list.replace(at, list.find('\n', at) - at, bad);
+    test::WriteText(dir / "seq" / "rgb.txt", list);
+    ExpectErrorContaining([&] { SequenceReader s(dir / "seq"); }, {"rgb.txt:", "'" + bad + "' leaves the sequence folder"});
+  }
+  test::WriteText(dir / "seq" / "rgb.txt", good);
+  // A 100 MB sensor.json (sparse: it costs no disk) is refused unread.
+  const fs::path big = dir / "seq" / "sensor.json";
+  fs::resize_file(big, 100u << 20);
+  const long before = PeakRssKib();
+  ExpectErrorContaining([&] { ReadSensorJson(big); }, {big.string(), "is 100 MiB, more than the 64 MiB"});
+  EXPECT_LT((PeakRssKib() - before) / 1024, 16);
+}
+
+TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
+  TempDir dir;
+  test::WriteText(dir / "m.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\n"
+                  "property float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                  "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float radiance_r\n"
+                  "property float radiance_g\nproperty float radiance_b\nelement face 0\n"
+                  "property list uchar int vertex_indices\nend_header\n");
+  ExpectErrorContaining([&] { ReadPly(dir / "m.ply"); }, {"m.ply", "is not a count this file can hold"});
+  std::string ply = test::ReadText(dir / "m.ply");
+  ply.replace(ply.find("1000000000000"), 13, "100");
+  test::WriteText(dir / "m.ply", ply);
+  ExpectErrorContaining([&] { ReadPly(dir / "m.ply"); }, {"m.ply", "claims 100 vertices and 0 faces, more than"});
+  ply.replace(ply.find("vertex 100"), 10, "vertex 1e2");
+  test::WriteText(dir / "m.ply", ply);
+  ExpectErrorContaining([&] { ReadPly(dir / "m.ply"); }, {"m.ply:3", "element count '1e2'"});
+  // An OpenEXR image 70000 pixels wide (one row: small on disk).
+  {
+    Imf::Header h(70000, 1);
+    h.channels().insert("R", Imf::Channel(Imf::HALF));
+    h.channels().insert("G", Imf::Channel(Imf::HALF));
+    h.channels().insert("B", Imf::Channel(Imf::HALF));
+    std::vector<half> px(70000, half(1.0f));
+    Imf::FrameBuffer fb;
+    for (const char* c : {"R", "G", "B"})
+      fb.insert(c, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data()), sizeof(half), 0));
+    Imf::OutputFile out((dir / "wide.exr").c_str(), h);
+    out.setFrameBuffer(fb);
+    out.writePixels(1);
+  }
+  ExpectErrorContaining([&] { ReadExr(dir / "wide.exr"); }, {"wide.exr", "claims 70000x1 pixels"});
+}
+
+}  // namespace
+}  // namespace hdrf::io
