@@ -4,6 +4,7 @@
 //                    [--tone OP[,KEY=VALUE...]]
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QScreen>
 #include <QTimer>
 #include <cstdio>
 
@@ -80,7 +81,11 @@ int main(int argc, char** argv) {
   }
   try {
     hdrf::gui::MainWindow w(o);
-    w.resize(1680, 1050);
+    // 1680x1050 where the screen has room, else the screen's free area (a 1366x768 laptop).
+    QSize size(1680, 1050);
+    if (const QScreen* screen = QGuiApplication::primaryScreen())
+      size = size.boundedTo(screen->availableGeometry().size());
+    w.resize(size);
     w.show();
     if (!o.screenshot.isEmpty()) {
       // A safety net for scripted runs: never hang a test or a docs build.
