@@ -45,7 +45,7 @@ for t in "${targets[@]}"; do
   limit=(-max_total_time="$seconds")
   [ -n "$runs" ] && limit=(-runs="$runs")
   log="$build/fuzz_$t.log"
-  echo "fuzz.sh: $t (${runs:+$runs runs}${runs:-$seconds s})"
+  if [ -n "$runs" ]; then echo "fuzz.sh: $t ($runs runs)"; else echo "fuzz.sh: $t ($seconds s)"; fi
   start=$(date +%s)
   if ! ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       "$build/tests/fuzz/fuzz_$t" "${limit[@]}" -max_len=1048576 -rss_limit_mb=4096 -timeout=30 \

@@ -437,9 +437,10 @@ Float3 Scene::Albedo(int material, Float3 p) const {
       const Float3 q = p * (1.f / m.scale);
       const float fx = q.x - std::floor(q.x) - 0.5f, fy = q.y - std::floor(q.y) - 0.5f,
                   fz = q.z - std::floor(q.z) - 0.5f;
-      const float on = HashToUnit(std::uint32_t(int(std::floor(q.x)) * 73856093) ^
-                                  std::uint32_t(int(std::floor(q.y)) * 19349663) ^
-                                  std::uint32_t(int(std::floor(q.z)) * 83492791) ^ seed_);
+      // Products in unsigned arithmetic: the same bits as before, without signed overflow.
+      const float on = HashToUnit(std::uint32_t(int(std::floor(q.x))) * 73856093u ^
+                                  std::uint32_t(int(std::floor(q.y))) * 19349663u ^
+                                  std::uint32_t(int(std::floor(q.z))) * 83492791u ^ seed_);
       const float r2 = fx * fx + fy * fy + fz * fz;
       return (on > 0.35f && r2 < 0.1f) ? m.b : m.a;
     }
