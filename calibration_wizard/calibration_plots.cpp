@@ -5,9 +5,13 @@
 
 namespace hdrf::wizard {
 
+// The plots' words (translation context "hdrf::wizard::Plots").
+struct Plots {
+  Q_DECLARE_TR_FUNCTIONS(hdrf::wizard::Plots)
+};
+
 namespace {
 
-QString Tr(const char* s) { return QCoreApplication::translate("hdrf::wizard::Plots", s); }
 const char* kChannel[3] = {QT_TRANSLATE_NOOP("hdrf::wizard::Plots", "red"),
                            QT_TRANSLATE_NOOP("hdrf::wizard::Plots", "green"),
                            QT_TRANSLATE_NOOP("hdrf::wizard::Plots", "blue")};
@@ -21,7 +25,7 @@ std::vector<double> Levels() {
 std::vector<PlotSeries> PerChannel(const std::array<std::array<float, radiometry::kLevels>, 3>& table) {
   std::vector<PlotSeries> s;
   for (int c = 0; c < 3; ++c) {
-    PlotSeries p{Tr(kChannel[c]), Levels(), {}, ChannelColor(c)};
+    PlotSeries p{Plots::tr(kChannel[c]), Levels(), {}, ChannelColor(c)};
     for (int i = 0; i < radiometry::kLevels; ++i) p.y.push_back(table[std::size_t(c)][std::size_t(i)]);
     s.push_back(std::move(p));
   }
@@ -32,21 +36,21 @@ std::vector<PlotSeries> PerChannel(const std::array<std::array<float, radiometry
 
 void ShowResponse(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
   plot.Clear();
-  plot.SetTitles(Tr("Inverse response f\u207B\u00B9 (") + QString::fromStdString(out.fit.method) + ")", Tr("level"),
-                 Tr("radiance \u00D7 exposure (f\u207B\u00B9(128) = 1)"));
+  plot.SetTitles(Plots::tr("Inverse response f⁻¹ (") + QString::fromStdString(out.fit.method) + ")", Plots::tr("level"),
+                 Plots::tr("radiance × exposure (f⁻¹(128) = 1)"));
   plot.SetSeries(PerChannel(out.fit.inverse.table));
 }
 
 void ShowDerivative(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
   plot.Clear();
-  plot.SetTitles(Tr("Response derivative f\u2032"), Tr("level"), Tr("levels per unit of radiance"));
+  plot.SetTitles(Plots::tr("Response derivative f′"), Plots::tr("level"), Plots::tr("levels per unit of radiance"));
   plot.SetLogY(true);
   plot.SetSeries(PerChannel(radiometry::ResponseDerivative(out.fit.inverse)));
 }
 
 void ShowNoise(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
   plot.Clear();
-  plot.SetTitles(Tr("Noise level function Var R = R\u00B7\u03C3s\u00B2 + \u03C3c\u00B2"), Tr("radiance R"), Tr("variance of R"));
+  plot.SetTitles(Plots::tr("Noise level function Var R = R·σs² + σc²"), Plots::tr("radiance R"), Plots::tr("variance of R"));
   plot.SetLogX(true);
   plot.SetLogY(true);
   if (!out.noise_fit) return;
@@ -59,7 +63,7 @@ void ShowNoise(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
       measured.y.push_back(l.variance);
       if (l.radiance > 0) lo = std::min(lo, l.radiance), hi = std::max(hi, l.radiance);
     }
-    PlotSeries fitted{Tr(kChannel[c]) + Tr(" (fit)"), {}, {}, ChannelColor(c)};
+    PlotSeries fitted{Plots::tr(kChannel[c]) + Plots::tr(" (fit)"), {}, {}, ChannelColor(c)};
     if (hi > lo)
       for (int k = 0; k <= 60; ++k) {
         const double r = lo * std::pow(hi / lo, k / 60.0);
@@ -75,7 +79,7 @@ void ShowNoise(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
 
 void ShowPcf(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
   plot.Clear();
-  plot.SetTitles(Tr("Pixel confidence p0..p3 (green)"), Tr("level"), Tr("confidence"));
+  plot.SetTitles(Plots::tr("Pixel confidence p0..p3 (green)"), Plots::tr("level"), Plots::tr("confidence"));
   static const QColor kColors[4] = {QColor(120, 120, 120), QColor(230, 140, 20), QColor(150, 60, 190), QColor(20, 150, 160)};
   std::vector<PlotSeries> s;
   for (int k = 0; k < 4; ++k) {
@@ -88,16 +92,16 @@ void ShowPcf(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
 
 void ShowResiduals(PlotWidget& plot, const radiometry::CalibrationOutcome& out) {
   plot.Clear();
-  plot.SetTitles(Tr("Residual per level (median, against the merge)"), Tr("level"), Tr("stops"));
+  plot.SetTitles(Plots::tr("Residual per level (median, against the merge)"), Plots::tr("level"), Plots::tr("stops"));
   plot.SetSeries(PerChannel(out.check.level_residual_stops));
   plot.AddReference(0, "");
 }
 
 void ShowConsistency(PlotWidget& plot, const radiometry::CalibrationOutcome& out, const radiometry::CheckLimits& limits) {
   plot.Clear();
-  plot.SetTitles(Tr("Each exposure against the merge of all"), Tr("exposure (ms)"), Tr("median |deviation| (stops)"));
+  plot.SetTitles(Plots::tr("Each exposure against the merge of all"), Plots::tr("exposure (ms)"), Plots::tr("median |deviation| (stops)"));
   plot.SetLogX(true);
-  PlotSeries all{Tr("every exposure"), {}, {}, QColor(40, 90, 220), true, false, 3.5};
+  PlotSeries all{Plots::tr("every exposure"), {}, {}, QColor(40, 90, 220), true, false, 3.5};
   PlotSeries line{"", {}, {}, QColor(40, 90, 220)};
   for (const radiometry::ExposureConsistency& e : out.check.consistency) {
     all.x.push_back(e.exposure_ms);
@@ -105,11 +109,11 @@ void ShowConsistency(PlotWidget& plot, const radiometry::CalibrationOutcome& out
   }
   line.x = all.x;
   line.y = all.y;
-  PlotSeries held{Tr("held back, predicted from the others"), {out.check.held_out.exposure_ms},
+  PlotSeries held{Plots::tr("held back, predicted from the others"), {out.check.held_out.exposure_ms},
                   {out.check.held_out.median_abs_stops}, QColor(214, 40, 40), true, false, 5};
   plot.SetSeries({line, all, held});
-  plot.AddReference(limits.good_stops, Tr("good"));
-  plot.AddReference(limits.redo_stops, Tr("redo"));
+  plot.AddReference(limits.good_stops, Plots::tr("good"));
+  plot.AddReference(limits.redo_stops, Plots::tr("redo"));
 }
 
 }  // namespace hdrf::wizard

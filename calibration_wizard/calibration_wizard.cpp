@@ -1,6 +1,7 @@
 #include "calibration_wizard/calibration_wizard.h"
 
 #include <QDir>
+#include <QGuiApplication>
 #include <QScreen>
 #include <QThread>
 #include <QTimer>
@@ -24,7 +25,11 @@ CalibrationWizard::CalibrationWizard(WizardSettings options, QWidget* parent)
   setPage(kValidate, new ValidatePage(this));
   setPage(kSave, new SavePage(this));
   setStartId(kSource);
-  resize(1180, 820);
+  // 1180x820 where the screen has room, else its free area (a 1366x768 laptop).
+  QSize size(1180, 820);
+  if (const QScreen* screen = QGuiApplication::primaryScreen())
+    size = size.boundedTo(screen->availableGeometry().size());
+  resize(size);
 }
 
 CalibrationWizard::~CalibrationWizard() {

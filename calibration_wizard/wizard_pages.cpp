@@ -31,6 +31,7 @@
 #include "calibration_wizard/calibration_wizard.h"
 #include "calibration_wizard/plot_widget.h"
 #include "calibration_wizard/report.h"
+#include "calibration_wizard/translation.h"
 #include "common/error.h"
 #include "io/sensor_json.h"
 #include "io/sweep.h"
@@ -529,7 +530,7 @@ void SetupPage::Plan() {
                                    .arg(plan->options.repeats)
                                    .arg(int(e.size()) * plan->options.repeats)
                                    .arg(CoverageText(plan->coverage));
-                for (const std::string& wmsg : plan->warnings) text += "<br>⚠ " + Q(wmsg).toHtmlEscaped();
+                for (const std::string& wmsg : plan->warnings) text += "<br>⚠ " + EngineText(wmsg).toHtmlEscaped();
                 plan_label_->setText(text);
                 emit completeChanged();
                 w_->PageDone("setup");
@@ -900,7 +901,7 @@ void ValidatePage::initializePage() {
                      .arg(out->noise_saved() ? tr("saved") : tr("not saved"));
   if (!c.reasons.empty()) {
     text += "<ul>";
-    for (const std::string& r : c.reasons) text += "<li>" + Q(r).toHtmlEscaped() + "</li>";
+    for (const std::string& r : c.reasons) text += "<li>" + EngineText(r).toHtmlEscaped() + "</li>";
     text += "</ul>";
   }
   if (c.verdict == radiometry::Verdict::kRedo)

@@ -12,7 +12,7 @@ constexpr std::size_t kWindow = 200;
 }
 
 ExposurePlot::ExposurePlot(QWidget* parent) : QWidget(parent) {
-  setMinimumSize(200, 90);
+  setMinimumSize(170, 90);
   setToolTip(tr("Exposure ratio to the first frame, in stops: estimated by the engine (cyan) "
                 "and reported by the sensor (orange)"));
 }
@@ -28,8 +28,27 @@ void ExposurePlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
   p.fillRect(rect(), QColor(24, 24, 28));
-  p.setPen(QColor(120, 120, 120));
-  p.drawText(rect().adjusted(4, 2, -4, -2), Qt::AlignTop | Qt::AlignLeft, tr("exposure (stops)"));
+  // Title and legend on one line: what is plotted, its unit and which colour is which.
+  const QFontMetrics fm(font());
+  int x = 4;
+  const int base = 2 + fm.ascent();
+  const auto text = [&](const QString& t, QColor c) {
+    p.setPen(c);
+    p.drawText(x, base, t);
+    x += fm.horizontalAdvance(t) + 10;
+  };
+  const auto key = [&](const QString& t, QColor c) {
+    p.setPen(QPen(c, 3));
+    p.drawLine(x, base - fm.ascent() / 2 + 1, x + 14, base - fm.ascent() / 2 + 1);
+    x += 18;
+    text(t, QColor(200, 200, 200));
+  };
+  text(tr("Exposure, stops"), QColor(160, 160, 160));
+  key(tr("estimated"), QColor(80, 220, 255));
+  key(tr("reported"), QColor(255, 160, 60));
+  p.setPen(QColor(140, 140, 140));
+  p.drawText(rect().adjusted(4, 2, -4, -2), Qt::AlignBottom | Qt::AlignLeft,
+             tr("last %1 frames").arg(kWindow));
   if (est_.empty()) return;
   double lo = 1e9, hi = -1e9;
   auto stops = [](double r) { return r > 0 && std::isfinite(r) ? std::log2(r) : std::nan(""); };
@@ -42,7 +61,7 @@ void ExposurePlot::paintEvent(QPaintEvent*) {
     if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
   }
   if (!(hi > lo)) lo -= 0.5, hi += 0.5;
-  const QRectF r = QRectF(rect()).adjusted(6, 18, -6, -6);
+  const QRectF r = QRectF(rect()).adjusted(6, fm.height() + 6, -6, -fm.height() - 2);
   auto pt = [&](std::size_t i, double s) {
     const double x = r.left() + r.width() * double(i) / double(std::max<std::size_t>(1, kWindow - 1));
     return QPointF(x, r.bottom() - r.height() * (s - lo) / (hi - lo));

@@ -14,7 +14,7 @@
 namespace hdrf::gui {
 
 namespace {
-constexpr int kBarWidth = 56;
+constexpr int kBarWidth = 46;
 }
 
 ImageView::ImageView(const QString& name, QWidget* parent) : QWidget(parent), name_(name) {
@@ -65,15 +65,15 @@ void ImageView::paintEvent(QPaintEvent*) {
   const QRect r = ImageRect();
   p.drawImage(r, image_);
   if (!bar_.isEmpty()) {
-    const int x0 = width() - kBarWidth + 8, h = std::max(20, r.height() - 20), y0 = r.top() + 10;
+    const int x0 = width() - kBarWidth + 3, h = std::max(20, r.height() - 20), y0 = r.top() + 10;
     for (int i = 0; i < h; ++i) {
       const int idx = int((bar_.size() - 1) * (1.0 - double(i) / (h - 1)));
       p.setPen(QColor::fromRgb(bar_[idx]));
       p.drawLine(x0, y0 + i, x0 + 12, y0 + i);
     }
     p.setPen(Qt::white);
-    p.drawText(x0 + 14, y0 + 8, QString::number(bar_max_, 'f', 1));
-    p.drawText(x0 + 14, y0 + h, QString::number(bar_min_, 'f', 1));
+    p.drawText(x0 + 14, y0 + 8, QString::number(bar_max_, 'g', 2));
+    p.drawText(x0 + 14, y0 + h, QString::number(bar_min_, 'g', 2));
     p.drawText(x0, y0 + h + 14, bar_unit_);
   }
 }

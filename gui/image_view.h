@@ -33,6 +33,8 @@ class ImageView : public QWidget {
   // Distinct grey levels seen in a coarse scan of the image (0 when empty): the test's
   // "non-empty, non-uniform" check.
   int DistinctLevels() const;
+  // Where the image is drawn in the view (scaled to fit, aspect kept); empty before a frame.
+  QRect ImageRect() const;
 
  signals:
   void status(const QString& message);
@@ -43,7 +45,6 @@ class ImageView : public QWidget {
   void contextMenuEvent(QContextMenuEvent*) override;
 
  private:
-  QRect ImageRect() const;
   QString name_;
   QImage image_;
   std::function<QString(int, int)> value_;

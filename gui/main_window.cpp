@@ -4,6 +4,7 @@
 #include "io/project.h"
 
 #include "calibration_wizard/calibration_wizard.h"
+#include "calibration_wizard/translation.h"
 
 #include <QAction>
 #include <QApplication>
@@ -24,13 +25,17 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QLineEdit>
 #include <QPixmap>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScreen>
+#include <QScrollBar>
 #include <QSettings>
+#include <QActionGroup>
 #include <QSlider>
 #include <QSpinBox>
 #include <QStatusBar>
@@ -62,6 +67,8 @@ QScrollArea* Scrolled(QWidget* w) {
   area->setWidgetResizable(true);
   area->setFrameShape(QFrame::NoFrame);
   area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  // Never narrower than the content (nothing cut off at the right).
+  area->setMinimumWidth(w->minimumSizeHint().width() + area->verticalScrollBar()->sizeHint().width() + 4);
   return area;
 }
 
@@ -94,7 +101,7 @@ QImage Grey(const Image<float>& im, float lo, float hi, F valid) {
 }
 
 QString Rad(Float3 r) {
-  return QStringLiteral("radiance %1 %2 %3").arg(r.x, 0, 'g', 4).arg(r.y, 0, 'g', 4).arg(r.z, 0, 'g', 4);
+  return QObject::tr("radiance %1 %2 %3").arg(r.x, 0, 'g', 4).arg(r.y, 0, 'g', 4).arg(r.z, 0, 'g', 4);
 }
 
 }  // namespace
@@ -108,9 +115,11 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   BuildStatus();
   BuildSensorPanel();
   BuildMenus();
+  ArrangeForScreen();
   default_state_ = saveState();
   LoadSettings();
   if (!o.source.isEmpty()) source_->setCurrentText(o.source);
+  source_->lineEdit()->setCursorPosition(0);  // a long spec shows from its start
   if (source_->currentText().startsWith("openni:")) ShowCameraPanel();
   if (o.device == "cpu" || o.device == "cuda") engine_->SetValue("device", o.device.toStdString());
   // The Mantiuk operators run where the engine does (CUDA falls back to the CPU; set with
@@ -259,9 +268,11 @@ void MainWindow::BuildViews() {
     QString title;
     Qt::DockWidgetArea area;
   };
-  const V defs[] = {{"colour", tr("Colour (as delivered)"), Qt::LeftDockWidgetArea},
-                    {"depth", tr("Depth"), Qt::LeftDockWidgetArea},
-                    {"radiance", tr("Radiance (tone-mapped)"), Qt::LeftDockWidgetArea},
+  // Two columns of views right of the 3-D view: what the camera delivers and the radiance
+  // made of it, then what the engine derives and the model.
+  const V defs[] = {{"colour", tr("Colour (as delivered)"), Qt::RightDockWidgetArea},
+                    {"depth", tr("Depth"), Qt::RightDockWidgetArea},
+                    {"radiance", tr("Radiance (tone-mapped)"), Qt::RightDockWidgetArea},
                     {"nr", tr("Normalized radiance"), Qt::RightDockWidgetArea},
                     {"confidence", tr("Confidence (PCF)"), Qt::RightDockWidgetArea},
                     {"model_radiance", tr("Model radiance (ray cast)"), Qt::RightDockWidgetArea},
@@ -278,6 +289,31 @@ void MainWindow::BuildViews() {
     views_[d.key] = v;
     docks_[d.key] = dock;
   }
+  splitDockWidget(docks_["colour"], docks_["confidence"], Qt::Horizontal);
+  splitDockWidget(docks_["colour"], docks_["depth"], Qt::Vertical);
+  splitDockWidget(docks_["depth"], docks_["radiance"], Qt::Vertical);
+  splitDockWidget(docks_["radiance"], docks_["nr"], Qt::Vertical);
+  splitDockWidget(docks_["confidence"], docks_["model_radiance"], Qt::Vertical);
+  splitDockWidget(docks_["model_radiance"], docks_["model_normals"], Qt::Vertical);
+}
+
+// The default sizes of the panels, and on a screen under 1000 px of free height (a 1366x768
+// laptop) fewer views side by side: there seven views cannot stand in two columns above the
+// status panel and stay legible, so they share tabs in pairs. The Live camera panel shares a
+// tab with the status panel at every size (it comes to the front when a camera is chosen).
+void MainWindow::ArrangeForScreen() {
+  const QScreen* screen = QGuiApplication::primaryScreen();
+  const bool compact = screen && screen->availableGeometry().height() < 1000;
+  if (compact) {
+    tabifyDockWidget(docks_["colour"], docks_["depth"]);
+    tabifyDockWidget(docks_["radiance"], docks_["nr"]);
+    tabifyDockWidget(docks_["model_radiance"], docks_["model_normals"]);
+    for (const char* k : {"colour", "radiance", "model_radiance"}) docks_[k]->raise();
+  }
+  const int column = compact ? 245 : 270;
+  resizeDocks({docks_["controls"], docks_["colour"], docks_["confidence"]}, {compact ? 330 : 360, column, column},
+              Qt::Horizontal);
+  resizeDocks({docks_["status"]}, {compact ? 170 : 190}, Qt::Vertical);
 }
 
 void MainWindow::BuildControls() {
@@ -288,10 +324,12 @@ void MainWindow::BuildControls() {
   auto* sl = new QVBoxLayout(src);
   source_ = new QComboBox;
   source_->setEditable(true);
+  source_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  source_->setMinimumContentsLength(24);
   source_->addItems({kSynthRoom, kSynthDesk});
   source_->setToolTip(tr("A sequence folder, a recording FILE.oni, a live camera openni:device=SERIAL,mode=vga "
-                         "(the Live camera panel fills it in), or synthetic:key=value,... (scene, seed, frames, "
-                         "ae, exposure, size)"));
+                         "(the Live camera panel fills it in), or synthetic:key=value,... (keys scene=, seed=, "
+                         "frames=, ae=, exposure=, size=)"));
   auto* browse = new QPushButton(tr("Sequence folder…"));
   connect(browse, &QPushButton::clicked, this, [this] {
     const QString dir = QFileDialog::getExistingDirectory(this, tr("Recorded sequence"));
@@ -343,8 +381,9 @@ void MainWindow::BuildControls() {
   dock->setWidget(Scrolled(w));
   addDockWidget(Qt::LeftDockWidgetArea, dock);
   docks_["controls"] = dock;
-  tabifyDockWidget(docks_["colour"], dock);
-  dock->raise();
+  // The controls take the window's whole height; status and camera panels sit under the views.
+  setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+  setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
 }
 
 void MainWindow::BuildStatus() {
@@ -371,12 +410,18 @@ void MainWindow::BuildStatus() {
   memory_->setObjectName("memory");
   memory_->setWordWrap(true);
   plot_ = new ExposurePlot;
+  // Text on the left, the exposure plot beside it: the panel stays short enough for a
+  // 1366x768 screen.
+  auto* text = new QVBoxLayout;
   for (QWidget* x : {static_cast<QWidget*>(frames_label_), static_cast<QWidget*>(health_),
                      static_cast<QWidget*>(reloc_caption_), static_cast<QWidget*>(reloc_hint_),
-                     static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_),
-                     static_cast<QWidget*>(plot_)})
-    l->addWidget(x);
-  l->addStretch(1);
+                     static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_)})
+    text->addWidget(x);
+  text->addStretch(1);
+  auto* row = new QHBoxLayout;
+  row->addLayout(text, 3);
+  row->addWidget(plot_, 2);
+  l->addLayout(row);
   auto* dock = new QDockWidget(tr("Status"), this);
   dock->setObjectName("dock_status");
   dock->setWidget(w);
@@ -392,9 +437,10 @@ void MainWindow::BuildSensorPanel() {
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
   addDockWidget(Qt::BottomDockWidgetArea, dock);
   docks_["sensor"] = dock;
-  // Beside the status panel: the picture and the model stay in sight while the camera is set
-  // up, and the wide, short space suits the panel's three columns.
-  splitDockWidget(docks_["status"], dock, Qt::Horizontal);
+  // A tab beside the status panel: the picture and the model stay in sight while the camera
+  // is set up, and the wide, short space suits the panel's three columns.
+  tabifyDockWidget(docks_["status"], dock);
+  docks_["status"]->raise();
   connect(sensor_panel_, &SensorPanel::openCamera, this, [this](const QString& spec) {
     source_->setCurrentText(spec);
     ShowCameraPanel();
@@ -528,6 +574,27 @@ void MainWindow::BuildMenus() {
     restoreState(default_state_);
     for (QDockWidget* d : docks_) d->show();
   });
+  // Language: the system's or one chosen here, for the studio and the wizard; it takes
+  // effect when the studio starts again (every window is made in its language).
+  view->addSeparator();
+  QMenu* language = view->addMenu(tr("&Language"));
+  language->setObjectName("menu_language");
+  auto* languages = new QActionGroup(language);
+  const QString saved = wizard::SavedLanguage();
+  QStringList codes{QString()};
+  codes << wizard::AvailableLanguages();
+  for (const QString& code : codes) {
+    QAction* a = language->addAction(code.isEmpty() ? tr("As the system") : wizard::LanguageName(code));
+    a->setData(code);
+    a->setCheckable(true);
+    a->setChecked(code == saved);
+    languages->addAction(a);
+    connect(a, &QAction::triggered, this, [this, code] {
+      if (code == wizard::SavedLanguage()) return;
+      wizard::SaveLanguage(code);
+      statusBar()->showMessage(tr("The language changes when the studio starts again."), 15000);
+    });
+  }
 }
 
 void MainWindow::OpenCalibrationWizard() {
@@ -620,7 +687,7 @@ void MainWindow::RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s) 
     views_["depth"]->SetScaleBar(bar, 0, hi, "m");
     views_["depth"]->SetImage(FromColor(cd), [s](int x, int y) {
       const float z = s->images.depth(x, y);
-      return z > 0 ? QStringLiteral("depth %1 m").arg(z, 0, 'f', 3) : QStringLiteral("no depth");
+      return z > 0 ? tr("depth %1 m").arg(z, 0, 'f', 3) : tr("no depth");
     });
   }
 }
@@ -656,7 +723,15 @@ void MainWindow::Render() {
     views_["radiance"]->SetImage(tone_->Map(im.radiance, ToneView::kLive, t), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
                                  [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });
   }
+  // Grey ramps for the grey views' scale bars.
+  const auto grey_bar = [] {
+    QVector<QRgb> bar;
+    for (int i = 0; i < 64; ++i) bar.push_back(qRgb(i * 4 + 3, i * 4 + 3, i * 4 + 3));
+    return bar;
+  };
   if (visible("nr")) {
+    // Normalized radiance: deviations from the local mean in local standard deviations.
+    views_["nr"]->SetScaleBar(grey_bar(), -3, 3, tr("std"));
     views_["nr"]->SetImage(Grey(im.nr, -3.f, 3.f, [](float v) { return v != 0.f; }), [s](int x, int y) {
       return QStringLiteral("NR %1").arg(s->images.nr(x, y), 0, 'f', 3);
     });
@@ -664,8 +739,9 @@ void MainWindow::Render() {
   if (visible("confidence")) {
     float mx = 1e-6f;
     for (std::size_t i = 0; i < im.confidence.size(); ++i) mx = std::max(mx, im.confidence[i]);
+    views_["confidence"]->SetScaleBar(grey_bar(), 0, mx, tr("PCF"));
     views_["confidence"]->SetImage(Grey(im.confidence, 0.f, mx, [](float) { return true; }), [s](int x, int y) {
-      return QStringLiteral("PCF %1 (max channel %2)")
+      return tr("PCF %1 (max channel %2)")
           .arg(s->images.confidence(x, y), 0, 'f', 3)
           .arg(s->images.max_confidence(x, y), 0, 'f', 3);
     });
@@ -688,18 +764,19 @@ void MainWindow::Render() {
     views_["model_normals"]->SetImage(img, [s](int x, int y) {
       const Float3 v = s->images.render.normal(x, y);
       const float d = s->images.render.depth(x, y);
-      return d > 0 ? QStringLiteral("normal %1 %2 %3, depth %4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
-                   : QStringLiteral("no surface");
+      return d > 0 ? tr("normal %1 %2 %3, depth %4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
+                   : tr("no surface");
     });
   }
-  // 3-D view: the mesh a few times a second, the trajectory every frame.
+  // 3-D view: the trajectory every frame (first: the view starts from the camera's pose),
+  // the mesh a few times a second.
+  view3d_->SetTrajectory(s->trajectory, s->camera);
   const qint64 now = QDateTime::currentMSecsSinceEpoch();
   if (s->mesh && s->mesh != mesh_shown_ && (now - mesh_time_ms_ > 300 || !mesh_shown_)) {
     mesh_shown_ = s->mesh;
     mesh_time_ms_ = now;
     view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance));
   }
-  view3d_->SetTrajectory(s->trajectory, s->camera);
   view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
   // Status.
   const auto& r = s->report;
@@ -714,7 +791,7 @@ void MainWindow::Render() {
                                         .arg(s->raycast_far_m, 0, 'f', 1)
                           : QString();
   using pipeline::FrameState;
-  const QString why = QString::fromStdString(r.why);
+  const QString why = wizard::EngineText(r.why);
   if (r.state == FrameState::kWaiting) {
     health_->setText(tr("WAITING: %1").arg(why) + far);
     health_->setStyleSheet("QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
@@ -748,13 +825,20 @@ void MainWindow::Render() {
     reloc_caption_->hide();
   }
   const auto& m = r.ms;
-  stages_->setText(tr("<table><tr><td>convert</td><td align=right>%1 ms</td></tr><tr><td>normalize</td><td align=right>%2 ms</td></tr>"
-                      "<tr><td>track</td><td align=right>%3 ms</td></tr><tr><td>compensate</td><td align=right>%4 ms</td></tr>"
-                      "<tr><td>integrate</td><td align=right>%5 ms</td></tr><tr><td>ray cast</td><td align=right>%6 ms</td></tr>"
-                      "<tr><td><b>total</b></td><td align=right><b>%7 ms (%8 frames/s)</b></td></tr></table>")
-                       .arg(m.convert, 0, 'f', 1).arg(m.normalize, 0, 'f', 1).arg(m.track, 0, 'f', 1)
-                       .arg(m.compensate, 0, 'f', 1).arg(m.integrate, 0, 'f', 1).arg(m.raycast, 0, 'f', 1)
-                       .arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
+  // Per-stage times in two column pairs (four rows).
+  const auto cell = [](const QString& name, double ms) {
+    return QStringLiteral("<td>%1</td><td align=right>%2 ms</td>").arg(name).arg(ms, 0, 'f', 1);
+  };
+  const QString gap = QStringLiteral("<td width=16></td>");
+  stages_->setText(QStringLiteral("<table><tr>%1%8%2</tr><tr>%3%8%4</tr><tr>%5%8%6</tr><tr>%7</tr></table>")
+                       .arg(cell(tr("convert"), m.convert), cell(tr("normalize"), m.normalize),
+                            cell(tr("track"), m.track), cell(tr("compensate"), m.compensate),
+                            cell(tr("integrate"), m.integrate), cell(tr("ray cast"), m.raycast),
+                            QStringLiteral("<td><b>%1</b></td><td align=right colspan=4><b>%2</b></td>")
+                                .arg(tr("total"), tr("%1 ms (%2 frames/s)")
+                                                      .arg(m.total(), 0, 'f', 1)
+                                                      .arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1)),
+                            gap));
   memory_->setText(tr("Volume: %1 of %2 MiB in %3 bricks")
                        .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
                        .arg(s->volume_budget_mb, 0, 'f', 0)
@@ -792,12 +876,17 @@ bool MainWindow::SaveScreenshot(const QString& path) {
     v["height"] = it.value()->image().height();
     v["distinct_levels"] = it.value()->DistinctLevels();
     v["visible"] = docks_[it.key()]->isVisible();
+    // On screen now (not behind another tab) and how large its picture is drawn there.
+    v["on_screen"] = !it.value()->visibleRegion().isEmpty();
+    v["shown"] = QJsonArray{it.value()->ImageRect().width(), it.value()->ImageRect().height()};
+    v["tabbed"] = !tabifiedDockWidgets(docks_[it.key()]).isEmpty();
     views[it.key()] = v;
   }
   report["views"] = views;
   const QImage v3 = view3d_->Capture();
   QJsonObject v3d;
   v3d["triangles"] = qint64(view3d_->mesh_triangles());
+  v3d["widget"] = QJsonArray{view3d_->width(), view3d_->height()};
   {
     ImageView probe("3d");
     probe.SetImage(v3, {});
@@ -811,6 +900,12 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   report["health"] = health_->text();
   report["error"] = error_->text();
   report["window"] = QJsonArray{shot.width(), shot.height()};
+  if (const QScreen* screen = QGuiApplication::primaryScreen())
+    report["screen"] = QJsonArray{screen->availableGeometry().width(), screen->availableGeometry().height()};
+  // The controls panel shows its content whole (never cut at the right).
+  if (auto* area = qobject_cast<QScrollArea*>(docks_["controls"]->widget()))
+    report["controls_fit"] = area->viewport()->width() >= area->widget()->minimumSizeHint().width();
+  report["language"] = qApp->property("hdrf_language").toString();
   QFile f(path + ".json");
   ok = ok && f.open(QIODevice::WriteOnly) && f.write(QJsonDocument(report).toJson()) > 0;
   return ok;

@@ -100,6 +100,7 @@ class MainWindow : public QMainWindow {
  private:
   void BuildViews();
   void BuildControls();
+  void ArrangeForScreen();
   void BuildStatus();
   void BuildMenus();
   void BuildSensorPanel();

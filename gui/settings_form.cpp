@@ -5,6 +5,8 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGroupBox>
+#include <QCoreApplication>
+#include <QLabel>
 #include <QLineEdit>
 #include <QSettings>
 #include <QSpinBox>
@@ -14,22 +16,35 @@
 
 #include "common/cuda_runtime.h"
 #include "common/error.h"
+#include "gui/registry_words.h"
 
 namespace hdrf::gui {
 
 namespace {
 
-// "volume.tau1_deg" -> "tau1", "tracker.max_jump_m" -> "max jump": the field, its unit dropped.
-QString Label(const pipeline::Setting& s) {
-  std::string f = s.key.substr(s.key.find('.') == std::string::npos ? 0 : s.key.find('.') + 1);
-  for (const char* suffix : {"_deg", "_px", "_mb", "_m"}) {
-    const std::string x = suffix;
-    if (f.size() > x.size() && f.compare(f.size() - x.size(), x.size(), x) == 0)
-      f.resize(f.size() - x.size());
+// A setting's unit as shown: degrees as a sign, counted things in the user's language.
+QString UnitText(const std::string& unit) {
+  if (unit == "deg") return QStringLiteral("°");
+  if (unit == "frames") return QObject::tr("frames");
+  if (unit == "voxels") return QObject::tr("voxels");
+  return QString::fromStdString(unit);
+}
+
+// The allowed values, in the user's language.
+QString RangeText(const pipeline::Setting& s) {
+  switch (s.kind) {
+    case pipeline::SettingKind::kBool:
+      return QObject::tr("on or off");
+    case pipeline::SettingKind::kChoice: {
+      QStringList c;
+      for (const auto& x : s.choices) c << QString::fromStdString(x);
+      return QObject::tr("one of %1").arg(c.join(QStringLiteral(", ")));
+    }
+    case pipeline::SettingKind::kIntList:
+      return QObject::tr("1 to %1 whole numbers, each %2 .. %3").arg(s.max_items).arg(s.min).arg(s.max);
+    default:
+      return QStringLiteral("%1 .. %2 %3").arg(s.min).arg(s.max).arg(UnitText(s.unit)).trimmed();
   }
-  for (char& c : f)
-    if (c == '_') c = ' ';
-  return QString::fromStdString(f);
 }
 
 QString SectionTitle(const std::string& section) {
@@ -39,6 +54,7 @@ QString SectionTitle(const std::string& section) {
   if (section == "exposure") return QObject::tr("Exposure compensation");
   if (section == "nr") return QObject::tr("Normalized radiance");
   if (section == "depth") return QObject::tr("Depth");
+  if (section == "reloc") return QObject::tr("Relocalisation");
   return QString::fromStdString(section);
 }
 
@@ -101,7 +117,7 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
         if (s.key == "device") {
           std::string why;
           if (!CudaAvailable(&why))
-            w->setItemData(1, QString::fromStdString("not available: " + why), Qt::ToolTipRole);
+            w->setItemData(1, tr("not available: “%1”").arg(QString::fromStdString(why)), Qt::ToolTipRole);
         }
         e.widget = w;
         e.get = [w] { return w->currentText().toStdString(); };
@@ -112,7 +128,7 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
       case pipeline::SettingKind::kInt: {
         auto* w = new QSpinBox;
         w->setRange(int(std::max(s.min, -2e9)), int(std::min(s.max, 2e9)));
-        if (!s.unit.empty()) w->setSuffix(QString::fromStdString(" " + s.unit));
+        if (!s.unit.empty()) w->setSuffix(QStringLiteral(" ") + UnitText(s.unit));
         e.widget = w;
         e.get = [w] { return std::to_string(w->value()); };
         e.set = [w](const std::string& t) { w->setValue(int(std::stod(t))); };
@@ -125,7 +141,7 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
         w->setDecimals(decimals);
         w->setRange(s.min, s.max);
         w->setSingleStep(std::pow(10.0, 1 - decimals));
-        if (!s.unit.empty()) w->setSuffix(QString::fromStdString(" " + s.unit));
+        if (!s.unit.empty()) w->setSuffix(QStringLiteral(" ") + UnitText(s.unit));
         e.widget = w;
         e.get = [w, &s] {
           // The registry's own spelling of the value (1e+08, 0.1), as Default() gives it.
@@ -151,14 +167,18 @@ SettingsForm::SettingsForm(QWidget* parent) : QWidget(parent) {
       }
     }
     e.widget->setObjectName(QString::fromStdString("setting_" + s.key));
-    // Two fields that differ only by unit ("max jump" in m and in deg) keep the unit.
-    QString label = Label(s);
-    for (const pipeline::Setting& other : pipeline::Settings())
-      if (&other != &s && other.key.substr(0, dot + 1) == s.key.substr(0, dot + 1) &&
-          Label(other) == label && !s.unit.empty())
-        label += QString::fromStdString(" (" + s.unit + ")");
-    e.widget->setToolTip(QString::fromStdString(s.key + ": " + s.help + " [" + s.Range() +
-                                                "; default " + s.Default() + "]"));
+    // The tooltip: what it does, when to change it, then its key, range and default as a
+    // settings file and the CLI spell them.
+    const QString tip = QStringLiteral("<p><b>%1</b></p><p>%2.</p><p>%3: %4.</p><p><tt>%5</tt> · %6 · %7</p>")
+                            .arg(SettingWords(s.label).toHtmlEscaped(), SettingWords(s.help).toHtmlEscaped(),
+                                 tr("When to change it"), SettingWords(s.advice).toHtmlEscaped(),
+                                 QString::fromStdString(s.key).toHtmlEscaped(),
+                                 RangeText(s).toHtmlEscaped(),
+                                 tr("default %1").arg(QString::fromStdString(s.Default())).toHtmlEscaped());
+    e.widget->setToolTip(tip);
+    auto* label = new QLabel(SettingWords(s.label));
+    label->setToolTip(tip);
+    label->setBuddy(e.widget);
     f->addRow(label, e.widget);
     e.set(s.Default());
     editors_[s.key] = e;

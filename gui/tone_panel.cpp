@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gui/registry_words.h"
+
 namespace hdrf::gui {
 
 namespace {
@@ -24,7 +26,7 @@ TonePanel::TonePanel(QWidget* parent) : QWidget(parent) {
   auto* top = top_ = new QFormLayout;
   op_ = new QComboBox;
   op_->setObjectName("tone_operator");
-  for (const auto& d : tonemap::Operators()) op_->addItem(QString::fromStdString(d.label), QString::fromStdString(d.key));
+  for (const auto& d : tonemap::Operators()) op_->addItem(ToneWords(d.label), QString::fromStdString(d.key));
   top->addRow(tr("Operator"), op_);
   preset_ = new QComboBox;
   preset_->setObjectName("tone_preset");
@@ -83,13 +85,13 @@ void TonePanel::Rebuild() {
   building_ = true;
   const auto& d = Current(op_);
   tonemap::Params& v = values_[d.key];
-  help_->setText(QString::fromStdString(d.help));
+  help_->setText(ToneWords(d.help));
   // Presets: "Custom" unless the values match one.
   preset_->clear();
   preset_->addItem(tr("Custom"), QString());
   int match = 0;
   for (const auto& p : d.presets) {
-    preset_->addItem(QString::fromStdString(p.label), QString::fromStdString(p.key));
+    preset_->addItem(ToneWords(p.label), QString::fromStdString(p.key));
     bool same = true;
     for (const auto& [k, x] : p.values) {
       auto it = v.find(k);
@@ -108,7 +110,7 @@ void TonePanel::Rebuild() {
   for (const auto& p : d.params) {
     const double value = v.count(p.key) ? v.at(p.key) : p.def;
     const QString key = QString::fromStdString(p.key);
-    const QString tip = QString::fromStdString(p.help) + QStringLiteral(" (") + key + QStringLiteral(")");
+    const QString tip = ToneWords(p.help) + QStringLiteral(" (") + key + QStringLiteral(")");
     QWidget* editor = nullptr;
     if (p.kind == tonemap::ParamDecl::Kind::kBool) {
       auto* b = new QCheckBox;
@@ -147,7 +149,7 @@ void TonePanel::Rebuild() {
     }
     editor->setObjectName(QStringLiteral("tone_") + key);
     editor->setToolTip(tip);
-    auto* label = new QLabel(QString::fromStdString(p.label));
+    auto* label = new QLabel(ToneWords(p.label));
     label->setToolTip(tip);
     form_->addRow(label, editor);
   }

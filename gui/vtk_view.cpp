@@ -3,6 +3,7 @@
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkFloatArray.h>
@@ -20,6 +21,12 @@
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "mesh/world_frame.h"
+
+#include <QLabel>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
@@ -33,9 +40,9 @@ struct VtkView::Impl {
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkGenericRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
-  vtkNew<vtkPolyData> mesh, path, frustum, region;
-  vtkNew<vtkPolyDataMapper> mesh_mapper, path_mapper, frustum_mapper, region_mapper;
-  vtkNew<vtkActor> mesh_actor, path_actor, frustum_actor, region_actor;
+  vtkNew<vtkPolyData> mesh, path, frustum, region, grid, axes;
+  vtkNew<vtkPolyDataMapper> mesh_mapper, path_mapper, frustum_mapper, region_mapper, grid_mapper, axes_mapper;
+  vtkNew<vtkActor> mesh_actor, path_actor, frustum_actor, region_actor, grid_actor, axes_actor;
   vtkNew<vtkCallbackCommand> make_current, is_current, frame;
 };
 
@@ -98,6 +105,93 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<I
   lines(d_->path, d_->path_mapper, d_->path_actor, 1.0, 0.85, 0.2, 2);
   lines(d_->frustum, d_->frustum_mapper, d_->frustum_actor, 1.0, 0.3, 0.25, 2);
   lines(d_->region, d_->region_mapper, d_->region_actor, 0.45, 0.7, 1.0, 1);
+  lines(d_->grid, d_->grid_mapper, d_->grid_actor, 0.42, 0.42, 0.46, 1);
+  lines(d_->axes, d_->axes_mapper, d_->axes_actor, 1, 1, 1, 3);
+  d_->axes_mapper->ScalarVisibilityOn();  // one colour per axis
+  d_->axes_mapper->SetScalarModeToUseCellData();
+  // Surfaces read by their shading as well as their colour: some ambient light keeps faces
+  // turned away from the headlight from going black.
+  d_->mesh_actor->GetProperty()->SetAmbient(0.3);
+  d_->mesh_actor->GetProperty()->SetDiffuse(0.7);
+  d_->renderer->TwoSidedLightingOn();
+  // What the lines mean, over the view's corner.
+  legend_ = new QLabel(this);
+  legend_->setObjectName("view3d_legend");
+  legend_->setTextFormat(Qt::RichText);
+  legend_->setAttribute(Qt::WA_TransparentForMouseEvents);
+  legend_->setStyleSheet("QLabel { background: rgba(0,0,0,150); color: #dddddd; padding: 3px; }");
+  legend_->setText(tr("<span style='color:#6b6b75'>&#9632;</span> floor grid, %1 m squares &nbsp; "
+                      "axes: <span style='color:#ff5050'>x</span> <span style='color:#50e050'>y</span> "
+                      "<span style='color:#6090ff'>up</span>, %2 m<br>"
+                      "<span style='color:#ffd933'>&#9632;</span> camera path &nbsp; "
+                      "<span style='color:#ff4d40'>&#9632;</span> camera now &nbsp; "
+                      "<span style='color:#73b3ff'>&#9632;</span> region the volume holds")
+                       .arg(kGridStep)
+                       .arg(kAxisLength));
+  legend_->adjustSize();
+  legend_->move(6, 6);
+}
+
+// The floor grid and the axes of the world frame: the floor's plane (or, before a floor is
+// seen, the plane 1.5 m below the first camera) seen from the model's frame.
+void VtkView::UpdateGround(const mesh::Mesh& m) {
+  const mesh::WorldFrame wf = mesh::EstimateWorldFrame(m);
+  floor_found_ = wf.floor_found;
+  ground_triangles_ = m.triangles.size();
+  Eigen::Matrix4d to_model = wf.transform.inverse();  // model <- world (Z up, floor at 0)
+  if (!wf.floor_found) {
+    Eigen::Matrix4d down = Eigen::Matrix4d::Identity();
+    down(2, 3) = -1.5;
+    to_model = to_model * down;
+  }
+  const Eigen::Matrix3d r = to_model.topLeftCorner<3, 3>();
+  up_ = r.col(2);
+  // The mesh's extent in the floor's plane, rounded out to whole squares plus one.
+  const Eigen::Matrix4d to_world = to_model.inverse();
+  double lo[2] = {-1, -1}, hi[2] = {1, 1};
+  for (const Float3& p : m.position) {
+    const Eigen::Vector4d w = to_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+    for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], w[k]), hi[k] = std::max(hi[k], w[k]);
+  }
+  for (int k = 0; k < 2; ++k) {
+    lo[k] = (std::floor(lo[k] / kGridStep) - 1) * kGridStep;
+    hi[k] = (std::ceil(hi[k] / kGridStep) + 1) * kGridStep;
+  }
+  const auto model = [&](double x, double y, double z) {
+    const Eigen::Vector4d q = to_model * Eigen::Vector4d(x, y, z, 1);
+    return Eigen::Vector3d(q.head<3>());
+  };
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  const auto segment = [&](vtkPoints* into, vtkCellArray* cells, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const vtkIdType i = into->InsertNextPoint(a.x(), a.y(), a.z());
+    into->InsertNextPoint(b.x(), b.y(), b.z());
+    const vtkIdType e[2] = {i, i + 1};
+    cells->InsertNextCell(2, e);
+  };
+  const int nx = int(std::lround((hi[0] - lo[0]) / kGridStep)), ny = int(std::lround((hi[1] - lo[1]) / kGridStep));
+  for (int i = 0; i <= nx && nx < 400; ++i)
+    segment(pts, lines, model(lo[0] + i * kGridStep, lo[1], 0), model(lo[0] + i * kGridStep, hi[1], 0));
+  for (int j = 0; j <= ny && ny < 400; ++j)
+    segment(pts, lines, model(lo[0], lo[1] + j * kGridStep, 0), model(hi[0], lo[1] + j * kGridStep, 0));
+  d_->grid->SetPoints(pts);
+  d_->grid->SetLines(lines);
+  d_->grid->Modified();
+  vtkNew<vtkPoints> apts;
+  vtkNew<vtkCellArray> alines;
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  const Eigen::Vector3d o = model(0, 0, 0.002);
+  segment(apts, alines, o, model(kAxisLength, 0, 0.002));
+  colours->InsertNextTuple3(255, 80, 80);
+  segment(apts, alines, o, model(0, kAxisLength, 0.002));
+  colours->InsertNextTuple3(80, 224, 80);
+  segment(apts, alines, o, model(0, 0, kAxisLength));
+  colours->InsertNextTuple3(96, 144, 255);
+  d_->axes->SetPoints(apts);
+  d_->axes->SetLines(alines);
+  d_->axes->GetCellData()->SetScalars(colours);
+  d_->axes->Modified();
 }
 
 void VtkView::SetRegion(const Float3& lo, const Float3& hi) {
@@ -215,6 +309,10 @@ void VtkView::SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours) {
   d_->mesh->GetPointData()->SetNormals(normals);
   d_->mesh->Modified();
   triangles_ = m.triangles.size();
+  // The ground follows the model until a floor is seen (then it stays put), re-estimated
+  // as the mesh grows by half.
+  if (triangles_ > 0 && (ground_triangles_ == 0 || (!floor_found_ && triangles_ > ground_triangles_ * 3 / 2)))
+    UpdateGround(m);
   if (first_mesh_ && triangles_ > 0) {
     first_mesh_ = false;
     ResetView();
@@ -240,6 +338,10 @@ void VtkView::SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera&
   // Frustum of the current pose: the image corners at 0.3 m.
   vtkNew<vtkPoints> fp;
   vtkNew<vtkCellArray> fl;
+  if (!poses.empty()) {
+    last_pose_ = poses.back();
+    has_pose_ = true;
+  }
   if (!poses.empty() && cam.Valid()) {
     const Pose& T = poses.back();
     const double z = 0.3;
@@ -265,12 +367,26 @@ void VtkView::SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera&
 }
 
 void VtkView::ResetView() {
-  // Looking along the first camera's axis (y down in camera coordinates: up is -y).
   vtkCamera* c = d_->renderer->GetActiveCamera();
-  c->SetPosition(0, 0, -1);
-  c->SetFocalPoint(0, 0, 1);
-  c->SetViewUp(0, -1, 0);
-  d_->renderer->ResetCamera();
+  if (has_pose_) {
+    // Where the operator stands: a step behind and above the scanning camera, looking where
+    // it looks, upright.
+    const Vec3 eye = last_pose_.translation();
+    Vec3 forward = last_pose_ * Vec3(0, 0, 1) - eye;
+    const Vec3 up(up_.x(), up_.y(), up_.z());
+    const Vec3 from = eye - 0.8 * forward + 0.4 * up, at = eye + 1.5 * forward;
+    c->SetPosition(from.x(), from.y(), from.z());
+    c->SetFocalPoint(at.x(), at.y(), at.z());
+    c->SetViewUp(up.x(), up.y(), up.z());
+    c->SetViewAngle(60);
+    d_->renderer->ResetCameraClippingRange();
+  } else {
+    // Looking along the first camera's axis (y down in camera coordinates: up is -y).
+    c->SetPosition(0, 0, -1);
+    c->SetFocalPoint(0, 0, 1);
+    c->SetViewUp(0, -1, 0);
+    d_->renderer->ResetCamera();
+  }
   dirty_ = true;
   update();
 }

@@ -4,6 +4,7 @@
 // the current frustum; trackball orbit (left), pan (middle or shift+left), zoom (wheel).
 #pragma once
 
+#include <Eigen/Core>
 #include <QOpenGLWidget>
 #include <array>
 #include <memory>
@@ -13,6 +14,8 @@
 #include "common/image.h"
 #include "common/se3.h"
 #include "mesh/mesh.h"
+
+class QLabel;
 
 namespace hdrf::gui {
 
@@ -48,12 +51,21 @@ class VtkView : public QOpenGLWidget {
  private:
   void Cleanup();
   void SetEventInfo(QMouseEvent* e);
+  void UpdateGround(const mesh::Mesh& m);
+  static constexpr double kGridStep = 0.5;    // m
+  static constexpr double kAxisLength = 0.5;  // m
   struct Impl;
   std::unique_ptr<Impl> d_;
   bool dirty_ = true;
   bool first_mesh_ = true;
   std::size_t triangles_ = 0;
   std::array<Float3, 2> region_{};
+  Pose last_pose_ = Pose::Identity();
+  bool has_pose_ = false;
+  Eigen::Vector3d up_{0, -1, 0};  // the world's up in the model's frame
+  bool floor_found_ = false;
+  std::size_t ground_triangles_ = 0;  // mesh size at the last ground estimate
+  QLabel* legend_ = nullptr;
 };
 
 }  // namespace hdrf::gui

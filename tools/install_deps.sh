@@ -13,7 +13,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   libopencv-photo-dev
   libopenexr-dev zlib1g-dev libopenni2-dev
-  qt6-base-dev libqt6opengl6-dev libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
+  qt6-base-dev libqt6opengl6-dev qt6-tools-dev qt6-l10n-tools qt6-translations-l10n libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
   libmeshoptimizer-dev libtinygltf-dev
   assimp-utils
   pfstools pfstmo

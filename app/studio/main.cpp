@@ -8,6 +8,7 @@
 #include <QTimer>
 #include <cstdio>
 
+#include "calibration_wizard/translation.h"
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
 
@@ -30,10 +31,14 @@ struct CommandLine {
                           "OP[,KEY=VALUE...]"};
   QCommandLineOption project{"project", "Open a saved scan (.hdrproj); Start continues it", "FILE"};
   QCommandLineOption no_recovery{"no-recovery-offer", "Do not offer scans a crash left (autosaves)"};
+  QCommandLineOption language{"language",
+                              "Language of the window: en or de (default: the one chosen under View → Language, "
+                              "else the system's)",
+                              "CODE"};
   CommandLine() {
     p.setApplicationDescription("HDRFusion Studio: HDR RGB-D scanning");
     p.addHelpOption();
-    p.addOptions({source, frames, device, shot, start, tone, project, no_recovery});
+    p.addOptions({source, frames, device, shot, start, tone, project, no_recovery, language});
   }
 };
 
@@ -58,6 +63,16 @@ int main(int argc, char** argv) {
   CommandLine cl;
   QCommandLineParser& p = cl.p;
   p.process(app);
+  {
+    // The language before any window exists: widgets take their words when they are made.
+    const QString lang = p.isSet(cl.language) ? p.value(cl.language) : hdrf::wizard::SavedLanguage();
+    if (p.isSet(cl.language) && !hdrf::wizard::AvailableLanguages().contains(lang)) {
+      std::fprintf(stderr, "%s: --language must be one of %s (got '%s')\n", "hdrfusion-studio",
+                   qPrintable(hdrf::wizard::AvailableLanguages().join(QStringLiteral(", "))), qPrintable(lang));
+      return 2;
+    }
+    hdrf::wizard::InstallTranslation(app, lang);
+  }
   const QCommandLineOption &source = cl.source, &frames = cl.frames, &device = cl.device, &shot = cl.shot,
                            &start = cl.start, &tone = cl.tone, &project = cl.project, &no_recovery = cl.no_recovery;
   hdrf::gui::StudioOptions o;

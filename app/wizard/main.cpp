@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "calibration_wizard/calibration_wizard.h"
+#include "calibration_wizard/translation.h"
 
 namespace {
 
@@ -29,10 +30,13 @@ struct CommandLine {
   QCommandLineOption basis{"emor-basis", "invemor.txt for --method emor", "FILE"};
   QCommandLineOption automatic{"auto", "Run every page with its defaults, save, and quit"};
   QCommandLineOption shots{"screenshots", "Save each page as a PNG into DIR", "DIR"};
+  QCommandLineOption language{"language",
+                              "Language of the wizard: en or de (default: the studio's choice, else the system's)",
+                              "CODE"};
   CommandLine() {
     p.setApplicationDescription("Guided camera calibration: exposure sweep, response, noise, profile");
     p.addHelpOption();
-    p.addOptions({source, sweep, report, step, repeats, method, basis, automatic, shots});
+    p.addOptions({source, sweep, report, step, repeats, method, basis, automatic, shots, language});
   }
 };
 
@@ -56,6 +60,16 @@ int main(int argc, char** argv) {
   CommandLine c;
   QCommandLineParser& p = c.p;
   p.process(app);
+  {
+    // The language before any window exists: widgets take their words when they are made.
+    const QString lang = p.isSet(c.language) ? p.value(c.language) : hdrf::wizard::SavedLanguage();
+    if (p.isSet(c.language) && !hdrf::wizard::AvailableLanguages().contains(lang)) {
+      std::fprintf(stderr, "%s: --language must be one of %s (got '%s')\n", "hdrfusion-calibration-wizard",
+                   qPrintable(hdrf::wizard::AvailableLanguages().join(QStringLiteral(", "))), qPrintable(lang));
+      return 2;
+    }
+    hdrf::wizard::InstallTranslation(app, lang);
+  }
   hdrf::wizard::WizardSettings o;
   o.source = p.value(c.source);
   o.sweep_folder = p.value(c.sweep);

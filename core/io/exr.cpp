@@ -11,6 +11,9 @@
 #include <half.h>
 
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <optional>
 #include <vector>
 
 #include "io/input_file.h"
@@ -27,7 +30,71 @@ std::pair<int, int> CheckedSize(const std::filesystem::path& file, const Imath::
   return {int(w), int(h)};
 }
 
-void CheckExrFile(const std::filesystem::path& file) { CheckInputFile(file, 4 * kMaxImageBytes, "an OpenEXR image"); }
+// Reads the first header's attributes from the file's opening bytes, without OpenEXR: the
+// data window must be a sane size, and the file must be large enough for the chunk offset
+// table that size implies. OpenEXR allocates that table (and more) from the header alone, so
+// a small file claiming a huge image is refused here before it costs any memory.
+void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes) {
+  std::ifstream in(file, std::ios::binary);
+  std::string b(64 * 1024, '\0');
+  in.read(b.data(), std::streamsize(b.size()));
+  b.resize(std::size_t(in.gcount()));
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = (v << 8) | std::uint8_t(b[at + std::size_t(k)]);
+    return v;
+  };
+  if (b.size() < 8 || u32(0) != 20000630u) throw InputError(file, "is not an OpenEXR file (no OpenEXR magic number)");
+  const std::uint32_t flags = u32(4);
+  if (flags & 0x1800u) return;  // deep or multi-part: OpenEXR's own checks (no reader here takes them)
+  std::size_t at = 8;
+  std::optional<Imath::Box2i> window;
+  int compression = -1;
+  std::uint32_t tile_x = 0, tile_y = 0;
+  const auto cstring = [&](std::string& out) {
+    const std::size_t end = b.find('\0', at);
+    if (end == std::string::npos || end - at > 255) return false;
+    out = b.substr(at, end - at);
+    at = end + 1;
+    return true;
+  };
+  for (;;) {
+    std::string name, type;
+    if (!cstring(name)) throw InputError(file, "OpenEXR header is damaged or longer than 64 KiB");
+    if (name.empty()) break;  // the end of the header
+    if (!cstring(type) || at + 4 > b.size()) throw InputError(file, "OpenEXR header is damaged");
+    const std::uint32_t size = u32(at);
+    at += 4;
+    if (size > b.size() - at) throw InputError(file, "OpenEXR header is damaged or longer than 64 KiB");
+    if (name == "dataWindow" && type == "box2i" && size == 16)
+      window = Imath::Box2i({int(u32(at)), int(u32(at + 4))}, {int(u32(at + 8)), int(u32(at + 12))});
+    if (name == "compression" && type == "compression" && size == 1) compression = std::uint8_t(b[at]);
+    if (name == "tiles" && type == "tiledesc" && size >= 8) tile_x = u32(at), tile_y = u32(at + 4);
+    at += size;
+  }
+  if (!window) throw InputError(file, "OpenEXR header has no data window");
+  const long long w = (long long)window->max.x - window->min.x + 1, h = (long long)window->max.y - window->min.y + 1;
+  CheckImageDimensions(file, w, h, 1);
+  // Level 0's chunks alone need one 8-byte offset each.
+  long long chunks = 0;
+  if (flags & 0x200u) {
+    if (tile_x == 0 || tile_y == 0) throw InputError(file, "OpenEXR tiled image has no tile size");
+    chunks = ((w + tile_x - 1) / tile_x) * ((h + tile_y - 1) / tile_y);
+  } else {
+    // Scan lines per chunk by compression: none, RLE, ZIPS 1; ZIP, PXR24 16; PIZ, B44(A),
+    // DWAA 32; DWAB 256.
+    static constexpr int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    const int lines = compression >= 0 && compression < 10 ? kLines[compression] : 1;
+    chunks = (h + lines - 1) / lines;
+  }
+  if (std::uintmax_t(at) + std::uintmax_t(chunks) * 8 > file_bytes)
+    throw InputError(file, "OpenEXR file is too short for the " + std::to_string(w) + "x" + std::to_string(h) +
+                               " image its header describes (truncated or damaged)");
+}
+
+void CheckExrFile(const std::filesystem::path& file) {
+  CheckExrHeader(file, CheckInputFile(file, 4 * kMaxImageBytes, "an OpenEXR image"));
+}
 }  // namespace
 
 RadianceImage ReadExr(const std::filesystem::path& file) {

@@ -132,6 +132,66 @@ Setting Alias(Setting s, std::string alias) {
   return s;
 }
 
+// The plain-words label of every setting and when an operator would change it; shown in the
+// studio's form and its tooltips.
+struct Words {
+  const char* key;
+  const char* label;
+  const char* advice;
+};
+constexpr Words kWords[] = {
+    {"device", "Run on", "Keep cuda where a GPU answers; cpu to compare with the reference or when the GPU is busy"},
+    {"pcf", "Pixel confidence", "Keep p1; p0 trusts every pixel alike, p2 and p3 trust mid-tones more"},
+    {"volume.voxel_m", "Voxel size", "Smaller for small objects and sharper colour (memory grows about 4x per halving); larger for big rooms"},
+    {"volume.voxel", "Voxel storage", "compact for scanning; full only to inspect the normalized radiance stored in the model"},
+    {"volume.truncation_voxels", "Surface band", "Wider for noisy depth, narrower to keep thin objects apart"},
+    {"volume.max_weight", "Geometry memory", "Lower so that moving objects fade from the model sooner"},
+    {"volume.max_radiance_weight", "Colour memory", "Lower so that colour follows changing light sooner"},
+    {"volume.tau0", "Colour confidence threshold", "Raise to keep dark or clipped pixels out of the colour"},
+    {"volume.tau1_deg", "Colour viewing angle limit", "Lower to take colour only from views that face the surface"},
+    {"volume.max_memory_mb", "Model memory limit", "Raise for large rooms when the volume reports it is full"},
+    {"volume.gpu_memory_mb", "GPU memory limit", "Set on a GPU with little memory; 0 lets the model use the GPU alone"},
+    {"volume.raycast_near_m", "Nearest model distance", "Lower when scanning objects closer than it"},
+    {"volume.raycast_far_m", "Farthest model distance", "Raise when tracking should use surfaces farther away (large halls)"},
+    {"tracker.kind", "Tracking method", "Keep nr+icp; icp alone for scenes without texture, intensity only to compare"},
+    {"tracker.frame_to_model", "Track against the model", "Turn off only to compare with frame-to-frame tracking"},
+    {"tracker.levels", "Image pyramid levels", "More for fast motion, fewer for small images"},
+    {"tracker.iterations", "Iterations per level", "More when tracking is lost on fast motion; fewer for speed"},
+    {"tracker.icp_sigma_m", "Depth residual scale", "Raise for noisy depth sensors"},
+    {"tracker.photo_sigma", "Colour residual scale", "Raise for noisy colour"},
+    {"tracker.adaptive_scales", "Measure residual scales", "Keep on; off to use the fixed scales above"},
+    {"tracker.icp_sigma_floor_m", "Least depth residual scale", "Raise when very clean depth makes tracking overconfident"},
+    {"tracker.photo_sigma_floor", "Least colour residual scale", "Raise when very clean colour makes tracking overconfident"},
+    {"tracker.huber_k", "Outlier threshold", "Lower when moving objects disturb tracking"},
+    {"tracker.icp_max_dist_m", "Largest point match distance", "Raise for fast motion, lower for clutter"},
+    {"tracker.icp_max_angle_deg", "Largest normal difference", "Raise for noisy normals"},
+    {"tracker.min_inlier_share", "Least matched share", "Lower for scenes with little overlap between frames; raise to refuse doubtful frames"},
+    {"tracker.max_condition", "Worst conditioning", "Lower to refuse frames of flat walls that cannot fix every direction"},
+    {"tracker.max_jump_m", "Largest jump", "Raise for a fast hand-held camera"},
+    {"tracker.max_jump_deg", "Largest turn", "Raise for a fast turning camera"},
+    {"tracker.verify_growth", "Residual growth limit", "Raise when good frames are refused after a change of scene"},
+    {"tracker.verify_floor_m", "Always-good depth residual", "Raise for noisy depth when good frames are refused"},
+    {"tracker.verify_floor_photo", "Always-good colour residual", "Raise for noisy colour when good frames are refused"},
+    {"tracker.min_robust_inliers", "Least robust weight", "Lower when good frames are refused in clutter"},
+    {"tracker.max_exposure_drift", "Exposure disagreement limit", "Raise for a camera whose reported exposure is unreliable"},
+    {"tracker.confirm_frames", "Frames to confirm", "More to be surer after a loss, fewer to resume sooner"},
+    {"tracker.min_anchor_depth", "Depth needed to start", "Lower for scenes mostly out of the depth range"},
+    {"reloc.enabled", "Relocalise when lost", "Keep on; off only to study losses"},
+    {"reloc.candidates", "Views tried when lost", "More to find the place sooner, at more time per lost frame"},
+    {"reloc.min_translation_m", "Keyframe spacing", "Lower to keep more views for relocalisation (more memory)"},
+    {"reloc.min_rotation_deg", "Keyframe angle", "Lower to keep more views for relocalisation (more memory)"},
+    {"exposure.stride", "Exposure sample spacing", "Lower for small images, higher for speed"},
+    {"exposure.min_samples", "Least exposure samples", "Lower for small images"},
+    {"nr.patch", "Patch size", "Larger for noisy colour, smaller for fine texture"},
+    {"nr.downsample", "Patch statistics scale", "Keep 2; 1 for small images"},
+    {"nr.min_std", "Least local contrast", "Raise when noise in flat areas disturbs tracking"},
+    {"depth.bilateral", "Smooth depth", "Keep on; off for clean synthetic depth"},
+    {"depth.sigma_space_px", "Smoothing width", "Larger for noisy depth"},
+    {"depth.sigma_depth_m", "Smoothing depth range", "Larger for noisy depth, smaller to keep edges"},
+    {"depth.radius", "Smoothing window", "Larger with a larger smoothing width"},
+    {"depth.max_normal_jump_m", "Depth edge threshold", "Raise for noisy depth at a distance"},
+};
+
 std::vector<Setting> MakeSettings() {
   constexpr double kBig = 1e12;
   std::vector<Setting> v;
@@ -327,6 +387,9 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Expert(Real("depth.max_normal_jump_m", 1e-4, 10, "m",
                           "Normals are undefined across larger depth jumps",
                           HDRF_FIELD(depth.max_normal_jump_m))));
+  for (Setting& s : v)
+    for (const Words& w : kWords)
+      if (s.key == w.key) s.label = w.label, s.advice = w.advice;
   return v;
 }
 

@@ -4,7 +4,8 @@
 // all generated from this list, and every message names a setting by its key.
 //
 // Adding a setting: a field with its default in the module's options struct, its check in
-// that struct's Check(), and one entry in Settings() (settings.cpp).
+// that struct's Check(), one entry in Settings() and its words (label and advice) in
+// kWords (settings.cpp); a test fails for a setting without them.
 #pragma once
 
 #include <functional>
@@ -31,7 +32,9 @@ struct Setting {
   int max_items = 1;                 // kIntList
   std::vector<std::string> choices;  // kChoice
   std::string unit;                  // "m", "px", "deg", "MiB", "voxels"; "" for none
-  std::string help;                  // one line
+  std::string label;                 // plain words for forms ("Voxel size")
+  std::string help;                  // one line: what it does
+  std::string advice;                // one line: when to change it
   bool expert = false;               // shown in the studio's expert section only
 
   // The value as text: numbers in full precision, booleans as true/false, lists as "1,2,3".

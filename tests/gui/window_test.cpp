@@ -13,6 +13,7 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QSet>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
@@ -26,6 +27,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "gui/export_dialog.h"
@@ -396,6 +398,53 @@ TEST(StudioProgram, SixtyFramesScreenshotEveryViewDrawn) {
   const QJsonObject v3 = j["view3d"].toObject();
   EXPECT_GT(v3["triangles"].toInt(), 1000);
   EXPECT_GT(v3["distinct_levels"].toInt(), 16) << "the 3-D view looks empty";
+}
+
+// The default layout on a 1366x768 laptop and a 1920x1080 desktop screen: the window fits the
+// screen, the controls are not cut off, every view is either on screen and large enough to
+// read or a tab beside one that is, and the 3-D view has room.
+TEST(StudioProgram, FitsLaptopAndDesktopScreensWithEveryViewLegible) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  // German words are longer: the laptop screen in German as well.
+  for (const auto& [w, h, on_screen, language] :
+       {std::tuple{1366, 768, 4, "en"}, std::tuple{1366, 768, 4, "de"}, std::tuple{1920, 1080, 7, "en"}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + language);
+    QTemporaryDir dir;
+    const QString shot = dir.filePath("studio.png");
+    const auto r = test::RunCommand("XDG_CONFIG_HOME=" + dir.path().toStdString() + " XDG_STATE_HOME=" +
+                                    dir.path().toStdString() + " xvfb-run -a -s '-screen 0 " + std::to_string(w) + "x" +
+                                    std::to_string(h) + "x24' " HDRF_STUDIO_BINARY
+                                    " --no-recovery-offer --source synthetic:frames=20,size=320x240 --frames 20 "
+                                    "--language " + language + " --screenshot " + shot.toStdString() + " 2>&1");
+    ASSERT_EQ(r.status, 0) << r.output;
+    QFile f(shot + ".json");
+    ASSERT_TRUE(f.open(QIODevice::ReadOnly));
+    const QJsonObject j = QJsonDocument::fromJson(f.readAll()).object();
+    const QJsonArray window = j["window"].toArray(), screen = j["screen"].toArray();
+    EXPECT_EQ(screen[0].toInt(), w);
+    EXPECT_LE(window[0].toInt(), w);
+    EXPECT_LE(window[1].toInt(), h);
+    EXPECT_GE(window[1].toInt(), h * 9 / 10);
+    EXPECT_TRUE(j["controls_fit"].toBool());
+    const QJsonArray v3 = j["view3d"].toObject()["widget"].toArray();
+    EXPECT_GE(v3[0].toInt(), 420);
+    EXPECT_GE(v3[1].toInt(), 350);
+    int seen = 0;
+    const QJsonObject views = j["views"].toObject();
+    for (auto it = views.begin(); it != views.end(); ++it) {
+      const QJsonObject v = it.value().toObject();
+      EXPECT_TRUE(v["visible"].toBool()) << it.key().toStdString();
+      if (!v["on_screen"].toBool()) {
+        EXPECT_TRUE(v["tabbed"].toBool()) << it.key().toStdString() << " is neither on screen nor a tab";
+        continue;
+      }
+      ++seen;
+      const QJsonArray shown = v["shown"].toArray();
+      EXPECT_GE(shown[0].toInt(), 190) << it.key().toStdString() << " is drawn too small to read";
+      EXPECT_GE(shown[1].toInt(), 140) << it.key().toStdString() << " is drawn too small to read";
+    }
+    EXPECT_GE(seen, on_screen);
+  }
 }
 
 TEST(StudioProgram, WithoutADisplayItSaysSo) {

@@ -138,6 +138,30 @@ TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
     out.writePixels(1);
   }
   ExpectErrorContaining([&] { ReadExr(dir / "wide.exr"); }, {"wide.exr", "claims 70000x1 pixels"});
+  // A 1x1 image whose header is patched to claim 16000x16000 (within the pixel limit): the
+  // file cannot hold the offsets of that many scan lines, so it is refused from the header,
+  // before OpenEXR allocates anything for it.
+  {
+    WriteExr(dir / "claims.exr", RadianceImage(1, 1, Float3{1, 1, 1}));
+    std::string exr = test::ReadText(dir / "claims.exr");
+    const std::string key("dataWindow\0box2i\0", 17);
+    const std::size_t at = exr.find(key);
+    ASSERT_NE(at, std::string::npos);
+    for (int k : {2, 3}) {  // max.x, max.y (little-endian int32 after the 4-byte size)
+      const std::uint32_t v = 15999;
+      for (int byte = 0; byte < 4; ++byte) exr[at + key.size() + 4 + 4 * std::size_t(k) + std::size_t(byte)] = char(v >> (8 * byte));
+    }
+    test::WriteText(dir / "claims.exr", exr);
+  }
+  const long before = PeakRssKib();
+  for (int i = 0; i < 3; ++i) {
+    ExpectErrorContaining([&] { ReadExr(dir / "claims.exr"); }, {"claims.exr", "too short for the 16000x16000 image"});
+    ExpectErrorContaining([&] { ReadExrChannel(dir / "claims.exr", "Z"); }, {"claims.exr", "too short"});
+  }
+  EXPECT_LT((PeakRssKib() - before) / 1024, 16);
+  // Not an OpenEXR file at all.
+  test::WriteText(dir / "text.exr", "hello, this is text");
+  ExpectErrorContaining([&] { ReadExr(dir / "text.exr"); }, {"text.exr", "no OpenEXR magic number"});
 }
 
 }  // namespace

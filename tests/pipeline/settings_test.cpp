@@ -33,6 +33,19 @@ TEST(Settings, EveryKeyAndAliasIsUniqueAndEveryDefaultIsValid) {
   EXPECT_NO_THROW(PipelineOptions{}.Check());
 }
 
+// The studio labels every control in plain words and says when to change it: each setting
+// has its own label (no two alike, none the bare key) and advice.
+TEST(Settings, EverySettingHasPlainWordsAndAdvice) {
+  std::set<std::string> labels;
+  for (const Setting& s : Settings()) {
+    EXPECT_GE(s.label.size(), 3u) << s.key;
+    EXPECT_EQ(s.label.find('_'), std::string::npos) << s.key << ": " << s.label;
+    EXPECT_NE(s.label, s.key);
+    EXPECT_TRUE(labels.insert(s.label).second) << s.key << " repeats the label " << s.label;
+    EXPECT_GE(s.advice.size(), 10u) << s.key;
+  }
+}
+
 // Each setting reaches its own field and no other: set a non-default value, read it back,
 // and check every other setting still has its default.
 TEST(Settings, EachSettingSetsExactlyItsOwnField) {
