@@ -6,6 +6,7 @@
 #include <QLocale>
 #include <QSettings>
 #include <QTranslator>
+#include <cstdio>
 
 namespace hdrf::wizard {
 
@@ -14,6 +15,16 @@ constexpr const char* kPrefix = ":/i18n";
 
 QSettings StudioSettings() { return QSettings(QStringLiteral("HDRFusion"), QStringLiteral("HDRFusion Studio")); }
 }  // namespace
+
+bool StartInLanguage(QCoreApplication& app, bool given, const QString& requested, const char* program) {
+  if (given && !AvailableLanguages().contains(requested)) {
+    std::fprintf(stderr, "%s: --language must be one of %s (got '%s')\n", program,
+                 qPrintable(AvailableLanguages().join(QStringLiteral(", "))), qPrintable(requested));
+    return false;
+  }
+  InstallTranslation(app, given ? requested : SavedLanguage());
+  return true;
+}
 
 QString SavedLanguage() { return StudioSettings().value(QStringLiteral("language")).toString(); }
 

@@ -21,6 +21,11 @@ QString LanguageName(const QString& code);
 // application's property "hdrf_language". Safe to call before
 // any window exists only: widgets made earlier keep their words.
 QString InstallTranslation(QCoreApplication& app, const QString& code);
+// A program's language at start: `requested` (its --language, when `given`: one of
+// AvailableLanguages(), else a message naming them goes to stderr and false comes back),
+// otherwise the studio's saved choice, otherwise the system's. Call before any window exists.
+bool StartInLanguage(QCoreApplication& app, bool given, const QString& requested, const char* program);
+
 // The language chosen in the studio (View → Language), shared by both programs: a code, or
 // "" to follow the system.
 QString SavedLanguage();

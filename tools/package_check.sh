@@ -54,5 +54,12 @@ in_root "hdrfusion-studio --help | sed -n 1,3p"
 in_root "DEBIAN_FRONTEND=noninteractive apt-get install -y -q xvfb xauth >/dev/null 2>&1"
 in_root "xvfb-run -a -s '-screen 0 1366x768x24' hdrfusion-studio --source synthetic:frames=30 --frames 30 --start --screenshot /tmp/studio.png >/tmp/studio.log 2>&1 || { cat /tmp/studio.log; exit 1; }"
 cp "$root_dir/tmp/studio.png" "$out/studio_installed.png"
+# In German, as a German system starts it (the translation is inside the program; Qt's own
+# words come with the package's dependency qt6-translations-l10n).
+in_root "LANGUAGE=de LC_ALL=C.UTF-8 xvfb-run -a -s '-screen 0 1366x768x24' hdrfusion-studio --source synthetic:frames=5 --frames 5 --screenshot /tmp/studio_de.png >/tmp/studio_de.log 2>&1 || { cat /tmp/studio_de.log; exit 1; }"
+in_root "grep -q '\"language\": \"de\"' /tmp/studio_de.png.json || { echo 'the studio did not start in German'; exit 1; }"
+in_root "test -f /usr/share/qt6/translations/qtbase_de.qm"
+cp "$root_dir/tmp/studio_de.png" "$out/studio_installed_de.png"
+echo "package_check: the studio starts in German on a German system"
 in_root "timeout 20 xvfb-run -a hdrfusion-calibration-wizard --help | sed -n 1,3p"
 echo "package_check: the installed studio's screenshot is $out/studio_installed.png"

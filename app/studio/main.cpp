@@ -63,16 +63,8 @@ int main(int argc, char** argv) {
   CommandLine cl;
   QCommandLineParser& p = cl.p;
   p.process(app);
-  {
-    // The language before any window exists: widgets take their words when they are made.
-    const QString lang = p.isSet(cl.language) ? p.value(cl.language) : hdrf::wizard::SavedLanguage();
-    if (p.isSet(cl.language) && !hdrf::wizard::AvailableLanguages().contains(lang)) {
-      std::fprintf(stderr, "%s: --language must be one of %s (got '%s')\n", "hdrfusion-studio",
-                   qPrintable(hdrf::wizard::AvailableLanguages().join(QStringLiteral(", "))), qPrintable(lang));
-      return 2;
-    }
-    hdrf::wizard::InstallTranslation(app, lang);
-  }
+  // The language before any window exists: widgets take their words when they are made.
+  if (!hdrf::wizard::StartInLanguage(app, p.isSet(cl.language), p.value(cl.language), "hdrfusion-studio")) return 2;
   const QCommandLineOption &source = cl.source, &frames = cl.frames, &device = cl.device, &shot = cl.shot,
                            &start = cl.start, &tone = cl.tone, &project = cl.project, &no_recovery = cl.no_recovery;
   hdrf::gui::StudioOptions o;

@@ -60,16 +60,8 @@ int main(int argc, char** argv) {
   CommandLine c;
   QCommandLineParser& p = c.p;
   p.process(app);
-  {
-    // The language before any window exists: widgets take their words when they are made.
-    const QString lang = p.isSet(c.language) ? p.value(c.language) : hdrf::wizard::SavedLanguage();
-    if (p.isSet(c.language) && !hdrf::wizard::AvailableLanguages().contains(lang)) {
-      std::fprintf(stderr, "%s: --language must be one of %s (got '%s')\n", "hdrfusion-calibration-wizard",
-                   qPrintable(hdrf::wizard::AvailableLanguages().join(QStringLiteral(", "))), qPrintable(lang));
-      return 2;
-    }
-    hdrf::wizard::InstallTranslation(app, lang);
-  }
+  // The language before any window exists: widgets take their words when they are made.
+  if (!hdrf::wizard::StartInLanguage(app, p.isSet(c.language), p.value(c.language), "hdrfusion-calibration-wizard")) return 2;
   hdrf::wizard::WizardSettings o;
   o.source = p.value(c.source);
   o.sweep_folder = p.value(c.sweep);
