@@ -10,6 +10,7 @@
 #include <ImfStringAttribute.h>
 #include <half.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -30,13 +31,14 @@ std::pair<int, int> CheckedSize(const std::filesystem::path& file, const Imath::
   return {int(w), int(h)};
 }
 
-// Reads the first header's attributes from the file's opening bytes, without OpenEXR: the
-// data window must be a sane size, and the file must be large enough for the chunk offset
-// table that size implies. OpenEXR allocates that table (and more) from the header alone, so
-// a small file claiming a huge image is refused here before it costs any memory.
+// Walks the file's headers (every part's, for a multi-part file) without OpenEXR: no
+// attribute may claim more bytes than the file holds, the first part's data window must be a
+// sane size, and a single-part file must be large enough for the chunk offset table that
+// size implies. OpenEXR allocates attribute values and that table from the header alone, so
+// a small file claiming huge ones is refused here before it costs any memory.
 void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes) {
   std::ifstream in(file, std::ios::binary);
-  std::string b(64 * 1024, '\0');
+  std::string b(std::size_t(std::min<std::uintmax_t>(file_bytes, 16u << 20)), '\0');
   in.read(b.data(), std::streamsize(b.size()));
   b.resize(std::size_t(in.gcount()));
   const auto u32 = [&](std::size_t at) {
@@ -46,11 +48,8 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
   };
   if (b.size() < 8 || u32(0) != 20000630u) throw InputError(file, "is not an OpenEXR file (no OpenEXR magic number)");
   const std::uint32_t flags = u32(4);
-  if (flags & 0x1800u) return;  // deep or multi-part: OpenEXR's own checks (no reader here takes them)
+  const bool tiled = flags & 0x200u, multi_part = flags & 0x1000u, deep = flags & 0x800u;
   std::size_t at = 8;
-  std::optional<Imath::Box2i> window;
-  int compression = -1;
-  std::uint32_t tile_x = 0, tile_y = 0;
   const auto cstring = [&](std::string& out) {
     const std::size_t end = b.find('\0', at);
     if (end == std::string::npos || end - at > 255) return false;
@@ -58,26 +57,39 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
     at = end + 1;
     return true;
   };
-  for (;;) {
-    std::string name, type;
-    if (!cstring(name)) throw InputError(file, "OpenEXR header is damaged or longer than 64 KiB");
-    if (name.empty()) break;  // the end of the header
-    if (!cstring(type) || at + 4 > b.size()) throw InputError(file, "OpenEXR header is damaged");
-    const std::uint32_t size = u32(at);
-    at += 4;
-    if (size > b.size() - at) throw InputError(file, "OpenEXR header is damaged or longer than 64 KiB");
-    if (name == "dataWindow" && type == "box2i" && size == 16)
-      window = Imath::Box2i({int(u32(at)), int(u32(at + 4))}, {int(u32(at + 8)), int(u32(at + 12))});
-    if (name == "compression" && type == "compression" && size == 1) compression = std::uint8_t(b[at]);
-    if (name == "tiles" && type == "tiledesc" && size >= 8) tile_x = u32(at), tile_y = u32(at + 4);
-    at += size;
+  const auto damaged = [&] { return InputError(file, "OpenEXR header is damaged (an attribute runs past the end of the file or of its first 16 MiB)"); };
+  std::optional<Imath::Box2i> window;
+  int compression = -1;
+  std::uint32_t tile_x = 0, tile_y = 0;
+  for (int part = 0;; ++part) {
+    bool empty = true;
+    for (;;) {
+      std::string name, type;
+      if (!cstring(name)) throw damaged();
+      if (name.empty()) break;  // the end of this header
+      empty = false;
+      if (!cstring(type) || at + 4 > b.size()) throw damaged();
+      const std::uint32_t size = u32(at);
+      at += 4;
+      if (size > b.size() - at) throw damaged();
+      if (part == 0) {
+        if (name == "dataWindow" && type == "box2i" && size == 16)
+          window = Imath::Box2i({int(u32(at)), int(u32(at + 4))}, {int(u32(at + 8)), int(u32(at + 12))});
+        if (name == "compression" && type == "compression" && size == 1) compression = std::uint8_t(b[at]);
+        if (name == "tiles" && type == "tiledesc" && size >= 8) tile_x = u32(at), tile_y = u32(at + 4);
+      }
+      at += size;
+    }
+    // A single-part file has one header; a multi-part file's list ends with an empty one.
+    if (!multi_part || empty) break;
   }
   if (!window) throw InputError(file, "OpenEXR header has no data window");
   const long long w = (long long)window->max.x - window->min.x + 1, h = (long long)window->max.y - window->min.y + 1;
   CheckImageDimensions(file, w, h, 1);
+  if (multi_part || deep) return;  // their offset tables are sized per part: OpenEXR's checks
   // Level 0's chunks alone need one 8-byte offset each.
   long long chunks = 0;
-  if (flags & 0x200u) {
+  if (tiled) {
     if (tile_x == 0 || tile_y == 0) throw InputError(file, "OpenEXR tiled image has no tile size");
     chunks = ((w + tile_x - 1) / tile_x) * ((h + tile_y - 1) / tile_y);
   } else {

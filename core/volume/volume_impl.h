@@ -166,9 +166,11 @@ inline constexpr int kBrick = 8;
 inline constexpr int kBrickRange = 1 << 15;
 inline constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
 
+// Unsigned arithmetic: any int (a coordinate read from a damaged file too) is tested
+// without overflow.
 HDRF_HD bool BrickInRange(int bx, int by, int bz) {
-  return unsigned(bx + kBrickRange) < unsigned(2 * kBrickRange) && unsigned(by + kBrickRange) < unsigned(2 * kBrickRange) &&
-         unsigned(bz + kBrickRange) < unsigned(2 * kBrickRange);
+  constexpr unsigned kOffset = unsigned(kBrickRange), kSpan = 2u * unsigned(kBrickRange);
+  return unsigned(bx) + kOffset < kSpan && unsigned(by) + kOffset < kSpan && unsigned(bz) + kOffset < kSpan;
 }
 HDRF_HD std::uint64_t BrickKey(int bx, int by, int bz) {
   return (std::uint64_t(unsigned(bz + kBrickRange)) << 32) | (std::uint64_t(unsigned(by + kBrickRange)) << 16) |

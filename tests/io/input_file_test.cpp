@@ -159,6 +159,20 @@ TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
     ExpectErrorContaining([&] { ReadExrChannel(dir / "claims.exr", "Z"); }, {"claims.exr", "too short"});
   }
   EXPECT_LT((PeakRssKib() - before) / 1024, 16);
+  // An attribute claiming 1.7 GB in a 600-byte file (found by the fuzzer: OpenEXR allocated
+  // it before reading), in a multi-part file as well as a single-part one.
+  for (const std::uint32_t version : {2u, 2u | 0x1000u}) {
+    std::string exr = test::ReadText(dir / "wide.exr").substr(0, 600);
+    for (int byte = 0; byte < 4; ++byte) exr[4 + std::size_t(byte)] = char(version >> (8 * byte));
+    const std::size_t at = exr.find(std::string("channels\0chlist\0", 16)) + 16;
+    const std::uint32_t claim = 0x696c6863u;
+    for (int byte = 0; byte < 4; ++byte) exr[at + std::size_t(byte)] = char(claim >> (8 * byte));
+    test::WriteText(dir / "claim.exr", exr);
+    const long before_claim = PeakRssKib();
+    ExpectErrorContaining([&] { ReadExr(dir / "claim.exr"); }, {"claim.exr", "an attribute runs past the end"});
+    ExpectErrorContaining([&] { ReadExrAttribute(dir / "claim.exr", "x"); }, {"claim.exr", "runs past the end"});
+    EXPECT_LT((PeakRssKib() - before_claim) / 1024, 16);
+  }
   // Not an OpenEXR file at all.
   test::WriteText(dir / "text.exr", "hello, this is text");
   ExpectErrorContaining([&] { ReadExr(dir / "text.exr"); }, {"text.exr", "no OpenEXR magic number"});

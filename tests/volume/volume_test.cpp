@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,6 +18,7 @@
 #include "radiometry/radiance.h"
 #include "sim/builtin_sensor.h"
 #include "volume/volume.h"
+#include "volume/volume_impl.h"
 #include "eval/eval.h"
 
 namespace hdrf {
@@ -25,6 +27,24 @@ namespace {
 using test::Frames;
 using test::Median;
 using test::Metres;
+
+// Brick coordinates read back from a file (a project) are range-checked without overflow:
+// the fuzzer's project with a brick at x = 2^31 - 1 made `x + range` overflow (UBSan); such
+// bricks, and those just outside the range, are refused, the edges of the range accepted.
+TEST(Volume, AssignRefusesBricksOutOfRangeForAnyCoordinate) {
+  volume::VolumeOptions o;
+  volume::Volume v(o);
+  const auto assign = [&](std::array<int, 3> c) {
+    v.Assign(std::vector<std::uint8_t>(o.brick_bytes()), {c}, "");
+  };
+  constexpr int r = volume::kBrickRange;
+  for (const int bad : {INT_MAX, INT_MIN, r, -r - 1, INT_MAX - r + 1}) {
+    EXPECT_THROW(assign({bad, 0, 0}), Error) << bad;
+    EXPECT_THROW(assign({0, bad, 0}), Error) << bad;
+    EXPECT_THROW(assign({0, 0, bad}), Error) << bad;
+  }
+  for (const int good : {-r, r - 1, 0}) EXPECT_NO_THROW(assign({good, good, good})) << good;
+}
 
 TEST(Volume, FusedDepthMatchesTruthAndRaycastAgrees) {
   const auto frames = Frames(12, sim::AeMode::kFixed, /*exact_depth=*/true);
