@@ -50,14 +50,20 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
   const std::uint32_t flags = u32(4);
   const bool tiled = flags & 0x200u, multi_part = flags & 0x1000u, deep = flags & 0x800u;
   std::size_t at = 8;
+  // Names and type names: at most 31 bytes, 255 in files flagged for long names (OpenEXR
+  // reads no further, so a longer one would be read by it differently than here).
+  const std::size_t max_name = (flags & 0x400u) ? 255 : 31;
   const auto cstring = [&](std::string& out) {
     const std::size_t end = b.find('\0', at);
-    if (end == std::string::npos || end - at > 255) return false;
+    if (end == std::string::npos || end - at > max_name) return false;
     out = b.substr(at, end - at);
     at = end + 1;
     return true;
   };
-  const auto damaged = [&] { return InputError(file, "OpenEXR header is damaged (an attribute runs past the end of the file or of its first 16 MiB)"); };
+  const auto damaged = [&] {
+    return InputError(file, "OpenEXR header is damaged (a name too long, or an attribute running past the end of the "
+                            "file or of its first 16 MiB)");
+  };
   std::optional<Imath::Box2i> window;
   int compression = -1;
   std::uint32_t tile_x = 0, tile_y = 0;

@@ -14,7 +14,14 @@ namespace hdrf::io {
 inline constexpr std::uintmax_t kMiB = std::uintmax_t(1) << 20;
 inline constexpr std::uintmax_t kMaxTextBytes = 64 * kMiB;      // JSON, lists, tables, trajectories
 inline constexpr std::uintmax_t kMaxImageBytes = 1024 * kMiB;   // one encoded image
+#ifndef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 28;  // 268 Mpx (16384 x 16384)
+#else
+// Fuzzing builds (tools/fuzz.sh) stop at 4 Mpx: a few kilobytes of compressed OpenEXR can
+// legally describe hundreds of megapixels, and clearing that memory would take the fuzzer's
+// time from the parsers.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 22;
+#endif
 inline constexpr int kMaxImageSide = 1 << 16;
 
 // Throws InputError naming the file unless it is a regular file (links followed) of at most

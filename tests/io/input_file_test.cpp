@@ -169,9 +169,19 @@ TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
     for (int byte = 0; byte < 4; ++byte) exr[at + std::size_t(byte)] = char(claim >> (8 * byte));
     test::WriteText(dir / "claim.exr", exr);
     const long before_claim = PeakRssKib();
-    ExpectErrorContaining([&] { ReadExr(dir / "claim.exr"); }, {"claim.exr", "an attribute runs past the end"});
-    ExpectErrorContaining([&] { ReadExrAttribute(dir / "claim.exr", "x"); }, {"claim.exr", "runs past the end"});
+    ExpectErrorContaining([&] { ReadExr(dir / "claim.exr"); }, {"claim.exr", "an attribute running past the end"});
+    ExpectErrorContaining([&] { ReadExrAttribute(dir / "claim.exr", "x"); }, {"claim.exr", "running past the end"});
     EXPECT_LT((PeakRssKib() - before_claim) / 1024, 16);
+  }
+  // A type name longer than OpenEXR reads (31 bytes): it would take the name's tail for the
+  // attribute's size (another fuzzer input, claiming 1.8 GB that way).
+  {
+    std::string exr = test::ReadText(dir / "wide.exr");
+    const std::size_t at = exr.find(std::string("compression\0compression\0", 24));
+    ASSERT_NE(at, std::string::npos);
+    exr.insert(at + 12 + 4, std::string(40, '\xff'));
+    test::WriteText(dir / "longname.exr", exr);
+    ExpectErrorContaining([&] { ReadExr(dir / "longname.exr"); }, {"longname.exr", "a name too long"});
   }
   // Not an OpenEXR file at all.
   test::WriteText(dir / "text.exr", "hello, this is text");
