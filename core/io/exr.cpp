@@ -90,6 +90,13 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
     if (!multi_part || empty) break;
   }
   if (!window) throw InputError(file, "OpenEXR header has no data window");
+  // The window's origin within 2^24 pixels of the image origin: the offset of its first
+  // pixel stays far inside the address space.
+  constexpr int kFar = 1 << 24;
+  if (std::abs((long long)window->min.x) > kFar || std::abs((long long)window->min.y) > kFar)
+    throw InputError(file, "OpenEXR data window starts at (" + std::to_string(window->min.x) + ", " +
+                               std::to_string(window->min.y) + "), more than " + std::to_string(kFar) +
+                               " pixels from the origin");
   const long long w = (long long)window->max.x - window->min.x + 1, h = (long long)window->max.y - window->min.y + 1;
   CheckImageDimensions(file, w, h, 1);
   if (multi_part || deep) return;  // their offset tables are sized per part: OpenEXR's checks
@@ -126,13 +133,14 @@ RadianceImage ReadExr(const std::filesystem::path& file) {
     const bool y_only = !rgb && ch.findChannel("Y");
     if (!rgb && !y_only) throw InputError(file, "OpenEXR file has no R, G, B (or Y) channels");
     RadianceImage out(w, h);
-    char* base = reinterpret_cast<char*>(out.data()) -
-                 (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * sizeof(Float3);
+    // Slices addressed from the data window (OpenEXR computes the origin's offset, with no
+    // pointer arithmetic outside the image here).
     const std::size_t xs = sizeof(Float3), ys = sizeof(Float3) * std::size_t(w);
     Imf::FrameBuffer fb;
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-      fb.insert(rgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+      fb.insert(rgb ? names[c] : "Y",
+                Imf::Slice::Make(Imf::FLOAT, reinterpret_cast<char*>(out.data()) + c * sizeof(float), dw, xs, ys));
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
     std::size_t bad = 0;
@@ -233,9 +241,8 @@ Image<float> ReadExrChannel(const std::filesystem::path& file, const std::string
     const auto [w, h] = CheckedSize(file, dw, sizeof(float));
     if (!in.header().channels().findChannel(name)) throw InputError(file, "OpenEXR file has no channel '" + name + "'");
     Image<float> out(w, h);
-    char* base = reinterpret_cast<char*>(out.data()) - (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * sizeof(float);
     Imf::FrameBuffer fb;
-    fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(w)));
+    fb.insert(name, Imf::Slice::Make(Imf::FLOAT, out.data(), dw, sizeof(float), sizeof(float) * std::size_t(w)));
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
     return out;

@@ -183,6 +183,43 @@ TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
     test::WriteText(dir / "longname.exr", exr);
     ExpectErrorContaining([&] { ReadExr(dir / "longname.exr"); }, {"longname.exr", "a name too long"});
   }
+  // A data window whose origin lies 2^30 pixels away (found by the fuzzer: the first pixel's
+  // offset overflowed the address space, UBSan) is refused; an ordinary offset window reads
+  // back pixel for pixel.
+  {
+    WriteExr(dir / "far.exr", RadianceImage(1, 1, Float3{1, 1, 1}));
+    std::string exr = test::ReadText(dir / "far.exr");
+    const std::string key("dataWindow\0box2i\0", 17);
+    const std::size_t at = exr.find(key) + key.size() + 4;
+    for (int k : {1, 3}) {  // min.y and max.y
+      const std::uint32_t v = 1u << 30;
+      for (int byte = 0; byte < 4; ++byte) exr[at + 4 * std::size_t(k) + std::size_t(byte)] = char(v >> (8 * byte));
+    }
+    test::WriteText(dir / "far.exr", exr);
+    ExpectErrorContaining([&] { ReadExr(dir / "far.exr"); }, {"far.exr", "starts at (0, 1073741824), more than 16777216"});
+    Imf::Header h(Imath::Box2i({-3, 5}, {1, 7}), Imath::Box2i({-3, 5}, {1, 7}));
+    for (const char* c : {"R", "G", "B"}) h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    std::vector<float> px(3 * 5 * 3);
+    for (std::size_t i = 0; i < px.size(); ++i) px[i] = float(i);
+    Imf::FrameBuffer fb;
+    for (int c = 0; c < 3; ++c)
+      fb.insert(std::string(1, "RGB"[c]),
+                Imf::Slice::Make(Imf::FLOAT, px.data() + c, h.dataWindow(), 3 * sizeof(float), 15 * sizeof(float)));
+    {
+      Imf::OutputFile out((dir / "offset.exr").c_str(), h);
+      out.setFrameBuffer(fb);
+      out.writePixels(3);
+    }
+    const RadianceImage back = ReadExr(dir / "offset.exr");
+    ASSERT_EQ(back.width(), 5);
+    ASSERT_EQ(back.height(), 3);
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 5; ++x) {
+        const std::size_t i = 3 * (std::size_t(y) * 5 + std::size_t(x));
+        EXPECT_EQ(back(x, y).x, px[i]);
+        EXPECT_EQ(back(x, y).z, px[i + 2]);
+      }
+  }
   // Not an OpenEXR file at all.
   test::WriteText(dir / "text.exr", "hello, this is text");
   ExpectErrorContaining([&] { ReadExr(dir / "text.exr"); }, {"text.exr", "no OpenEXR magic number"});
