@@ -220,6 +220,37 @@ TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
         EXPECT_EQ(back(x, y).z, px[i + 2]);
       }
   }
+  // A header with 300 float channels over a 60000-pixel-wide window (ZIP: 16 lines a chunk):
+  // one chunk would decode to 1098 MiB, which OpenEXR allocates before reading (the fuzzer's
+  // 1.3 KB input asked for 1.9 GB this way). Built byte by byte: only the header matters.
+  {
+    std::string h("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+    const auto u32 = [](std::uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
+    const auto attr = [&](const std::string& name, const std::string& type, const std::string& value) {
+      h += name + '\0' + type + '\0' + u32(std::uint32_t(value.size())) + value;
+    };
+    std::string channels;
+    for (int c = 0; c < 300; ++c) channels += "c" + std::to_string(c) + '\0' + u32(2) + std::string(4, '\0') + u32(1) + u32(1);
+    channels += '\0';
+    attr("channels", "chlist", channels);
+    attr("compression", "compression", std::string(1, '\x03'));
+    attr("dataWindow", "box2i", u32(0) + u32(0) + u32(59999) + u32(0));
+    attr("displayWindow", "box2i", u32(0) + u32(0) + u32(59999) + u32(0));
+    attr("lineOrder", "lineOrder", std::string(1, '\0'));
+    h += '\0';
+    h += std::string(64, '\0');  // the offset table and a little more
+    test::WriteText(dir / "channels.exr", h);
+    ExpectErrorContaining([&] { ReadExr(dir / "channels.exr"); },
+                          {"channels.exr", "chunks of 1098 MiB (1200 bytes per pixel), more than the 256 MiB"});
+    // A header naming its data window twice (a fuzzer input whose first window was 2^30 wide):
+    // which one OpenEXR keeps is not guessed, the file is refused.
+    const std::string window = std::string("dataWindow") + '\0' + "box2i" + '\0';
+    std::string twice = test::ReadText(dir / "wide.exr");
+    const std::size_t at = twice.find(window);
+    twice.insert(at, twice.substr(at, window.size() + 4 + 16));
+    test::WriteText(dir / "twice.exr", twice);
+    ExpectErrorContaining([&] { ReadExr(dir / "twice.exr"); }, {"twice.exr", "names the attribute 'dataWindow' twice"});
+  }
   // Not an OpenEXR file at all.
   test::WriteText(dir / "text.exr", "hello, this is text");
   ExpectErrorContaining([&] { ReadExr(dir / "text.exr"); }, {"text.exr", "no OpenEXR magic number"});
