@@ -37,9 +37,23 @@ std::pair<int, int> CheckedSize(const std::filesystem::path& file, const Imath::
 // sane size, and a single-part file must be large enough for the chunk offset table that
 // size implies. OpenEXR allocates attribute values and that table from the header alone, so
 // a small file claiming huge ones is refused here before it costs any memory.
+void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes, std::size_t read_bytes);
+
+// Headers are small: the first 64 KiB are read, and up to 16 MiB only for a header longer
+// than that (a large preview or profile attribute), so a large image is not read twice.
 void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes) {
+  constexpr std::size_t kFirst = 64 << 10;
+  if (file_bytes <= kFirst) return CheckExrHeader(file, file_bytes, kFirst);
+  try {
+    CheckExrHeader(file, file_bytes, kFirst);
+  } catch (const InputError&) {
+    CheckExrHeader(file, file_bytes, 16 << 20);  // the same verdict where the header fits
+  }
+}
+
+void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes, std::size_t read_bytes) {
   std::ifstream in(file, std::ios::binary);
-  std::string b(std::size_t(std::min<std::uintmax_t>(file_bytes, 16u << 20)), '\0');
+  std::string b(std::size_t(std::min<std::uintmax_t>(file_bytes, read_bytes)), '\0');
   in.read(b.data(), std::streamsize(b.size()));
   b.resize(std::size_t(in.gcount()));
   const auto u32 = [&](std::size_t at) {
@@ -63,10 +77,14 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
   };
   const auto damaged = [&] {
     return InputError(file, "OpenEXR header is damaged (a name too long, or an attribute running past the end of the "
-                            "file or of its first 16 MiB)");
+                            "file or a header longer than 16 MiB)");
   };
   std::optional<Imath::Box2i> window;
   int compression = -1;
+  // Scan lines per chunk by compression: none, RLE, ZIPS 1; ZIP, PXR24 16; PIZ, B44(A),
+  // DWAA 32; DWAB 256.
+  static constexpr int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+  const auto lines = [&] { return compression >= 0 && compression < 10 ? kLines[compression] : 1; };
   std::uint32_t tile_x = 0, tile_y = 0;
   std::uint64_t pixel_bytes = 0;  // all channels of one pixel
   for (int part = 0;; ++part) {
@@ -122,10 +140,7 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
   // for 1.9 GB). 256 MiB holds a 65536-pixel-wide, 32-line chunk of 32 float channels.
   {
     constexpr std::uint64_t kMaxChunkBytes = std::uint64_t(256) << 20;
-    static constexpr int kChunkLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
-    const std::uint64_t chunk_pixels =
-        tiled ? std::uint64_t(tile_x) * tile_y
-              : std::uint64_t(w) * std::uint64_t(compression >= 0 && compression < 10 ? kChunkLines[compression] : 1);
+    const std::uint64_t chunk_pixels = tiled ? std::uint64_t(tile_x) * tile_y : std::uint64_t(w) * std::uint64_t(lines());
     if (pixel_bytes > 0 && chunk_pixels > kMaxChunkBytes / pixel_bytes)
       throw InputError(file, "OpenEXR header describes chunks of " + std::to_string((chunk_pixels * pixel_bytes) >> 20) +
                                  " MiB (" + std::to_string(pixel_bytes) + " bytes per pixel), more than the " +
@@ -138,11 +153,7 @@ void CheckExrHeader(const std::filesystem::path& file, std::uintmax_t file_bytes
     if (tile_x == 0 || tile_y == 0) throw InputError(file, "OpenEXR tiled image has no tile size");
     chunks = ((w + tile_x - 1) / tile_x) * ((h + tile_y - 1) / tile_y);
   } else {
-    // Scan lines per chunk by compression: none, RLE, ZIPS 1; ZIP, PXR24 16; PIZ, B44(A),
-    // DWAA 32; DWAB 256.
-    static constexpr int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
-    const int lines = compression >= 0 && compression < 10 ? kLines[compression] : 1;
-    chunks = (h + lines - 1) / lines;
+    chunks = (h + lines() - 1) / lines();
   }
   if (std::uintmax_t(at) + std::uintmax_t(chunks) * 8 > file_bytes)
     throw InputError(file, "OpenEXR file is too short for the " + std::to_string(w) + "x" + std::to_string(h) +
