@@ -31,13 +31,14 @@ bool StartInLanguage(QCoreApplication& app, bool given, const QString& requested
 QString SavedLanguage();
 void SaveLanguage(const QString& code);
 
-// A message of the engine (a warning, a reason, an error naming a file), shown as the engine
-// wrote it: in English, set apart in the user's language's quotation marks where that is
-// not English. The engine's messages are shared with the command-line tools and logs.
-inline QString EngineText(const QString& message) {
-  return QCoreApplication::translate("hdrf::EngineText", "%1", "an engine message, quoted as written (English)")
-      .arg(message);
-}
-inline QString EngineText(const std::string& message) { return EngineText(QString::fromStdString(message)); }
+// A message of the engine (a reason a frame was not fused, a sweep plan's warning, a
+// calibration's reason, a profile's warning): one of the engine's fixed wordings
+// (common/message.h) is shown translated, with its arguments put back (numbers in the
+// language's notation, an argument that is itself a message translated too). Any other
+// message (an error naming a file and what is wrong in it) is shown as the engine wrote it:
+// in English, set apart in the language's quotation marks where that is not English.
+QString EngineText(const std::string& message);
+inline QString EngineText(const QString& message) { return EngineText(message.toStdString()); }
+inline QString EngineText(const char* message) { return EngineText(std::string(message ? message : "")); }
 
 }  // namespace hdrf::wizard

@@ -207,7 +207,7 @@ void SourcePage::RefreshDevices() {
       devices_->addItem(Q(d.name + (d.serial.empty() ? " (in use?)" : " — " + d.serial)),
                         Q(d.serial.empty() ? d.uri : d.serial));
   } catch (const std::exception& e) {
-    ShowProblem(error_, Q(e.what()));
+    ShowProblem(error_, EngineText(e.what()));
   }
   if (devices_->count() == 0) devices_->addItem(tr("no camera connected"), QString());
   UpdateEnabled();
@@ -308,8 +308,8 @@ bool SourcePage::validatePage() {
       st.sweep_sensor = st.camera->sensor();
     }
   } catch (const std::exception& e) {
-    ShowProblem(error_, Q(e.what()));
-    w_->Fail(Q(e.what()));
+    ShowProblem(error_, EngineText(e.what()));
+    w_->Fail(EngineText(e.what()));
     return false;
   }
   ShowProblem(error_, "");
@@ -435,7 +435,7 @@ void SetupPage::ApplyLocks() {
                              .arg(l.auto_exposure ? tr("on") : tr("off"), l.auto_white_balance ? tr("on") : tr("off")));
     ShowProblem(problem_, "");
   } catch (const std::exception& e) {
-    ShowProblem(problem_, Q(e.what()));
+    ShowProblem(problem_, EngineText(e.what()));
   }
 }
 
@@ -463,13 +463,13 @@ void SetupPage::Preview() {
     for (int i = 0; i < 256; ++i) x[std::size_t(i)] = i;
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) s.push_back({names[c], x, count[std::size_t(c)], ChannelColor(c)});
-    histogram_->SetTitles(tr("Histogram: %1 % saturated, %2 % black").arg(100 * high, 0, 'f', 1).arg(100 * low, 0, 'f', 1),
+    histogram_->SetTitles(tr("Histogram: %L1 % saturated, %L2 % black").arg(100 * high, 0, 'f', 1).arg(100 * low, 0, 'f', 1),
                           tr("level"), tr("pixels"));
     histogram_->SetLogY(true);
     histogram_->SetSeries(std::move(s));
   } catch (const std::exception& e) {
     timer_->stop();
-    ShowProblem(problem_, Q(e.what()));
+    ShowProblem(problem_, EngineText(e.what()));
   }
 }
 
@@ -656,7 +656,7 @@ void CapturePage::Start(bool resume) {
                                  .arg(s.exposure_ms, 0, 'g', 4)
                                  .arg(s.frames_written)
                                  .arg(s.recaptures));
-      if (!s.note.empty()) self->log_->appendPlainText(QString::fromStdString(s.note));
+      if (!s.note.empty()) self->log_->appendPlainText(EngineText(s.note));
       if (s.frame) {
         self->log_->appendPlainText(tr("Step %1: %2 ms, done").arg(s.step + 1).arg(s.exposure_ms, 0, 'g', 4));
         const ColorImage& f = *s.frame;
@@ -701,9 +701,9 @@ void CapturePage::Start(bool resume) {
           st.sweep_folder = folder;
           st.sweep = io::ReadSweep(folder);
         } catch (const std::exception& e) {
-          ShowProblem(problem_, Q(e.what()));
+          ShowProblem(problem_, EngineText(e.what()));
           UpdateButtons();
-          w_->Fail(Q(e.what()));
+          w_->Fail(EngineText(e.what()));
           return;
         }
         complete_ = true;
@@ -799,7 +799,7 @@ void FitPage::Fit() {
       settings.basis = radiometry::EmorBasis::Load(basis_->text().trimmed().toStdString());
     }
   } catch (const std::exception& e) {
-    ShowProblem(problem_, Q(e.what()));
+    ShowProblem(problem_, EngineText(e.what()));
     return;
   }
   running_ = true;
@@ -838,13 +838,13 @@ void FitPage::Fit() {
                 ShowNoise(*noise_, *out);
                 ShowPcf(*pcf_, *out);
                 ShowResiduals(*residuals_, *out);
-                QString text = tr("<b>%1</b>: rms log residual R %2, G %3, B %4.")
+                QString text = tr("<b>%1</b>: rms log residual R %L2, G %L3, B %L4.")
                                    .arg(Q(out->fit.method))
                                    .arg(out->fit.rms_log_residual[0], 0, 'f', 4)
                                    .arg(out->fit.rms_log_residual[1], 0, 'f', 4)
                                    .arg(out->fit.rms_log_residual[2], 0, 'f', 4);
                 if (out->noise_fit)
-                  text += tr(" Noise: σs %1 / %2 / %3, σc %4 / %5 / %6.")
+                  text += tr(" Noise: σs %L1 / %L2 / %L3, σc %L4 / %L5 / %L6.")
                               .arg(out->noise.sigma_s[0], 0, 'f', 4)
                               .arg(out->noise.sigma_s[1], 0, 'f', 4)
                               .arg(out->noise.sigma_s[2], 0, 'f', 4)
@@ -893,7 +893,7 @@ void ValidatePage::initializePage() {
   const QString names[3] = {tr("Good"), tr("Marginal"), tr("Redo")};
   verdict_->setText(tr("Verdict: %1").arg(names[int(c.verdict)]));
   verdict_->setStyleSheet(QString("color: %1").arg(kColour[int(c.verdict)]));
-  QString text = tr("Held back %1 ms: predicted from the others within %2 stops (median). Levels covered: %3. "
+  QString text = tr("Held back %L1 ms: predicted from the others within %L2 stops (median). Levels covered: %3. "
                     "Noise level function: %4.")
                      .arg(c.held_out.exposure_ms, 0, 'g', 4)
                      .arg(c.held_out.median_abs_stops, 0, 'f', 3)
@@ -989,7 +989,7 @@ void SavePage::Save() {
     st.profile = sensors::SaveProfile(serial, profile);
   } catch (const std::exception& e) {
     result_->setText("<span style='color:#b00000'><b>" + Q(e.what()).toHtmlEscaped() + "</b></span>");
-    w_->Fail(Q(e.what()));
+    w_->Fail(EngineText(e.what()));
     return;
   }
   saved_ = true;

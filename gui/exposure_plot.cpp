@@ -1,5 +1,6 @@
 #include "gui/exposure_plot.h"
 
+#include <QLocale>
 #include <QPainter>
 #include <QPainterPath>
 #include <algorithm>
@@ -85,8 +86,8 @@ void ExposurePlot::paintEvent(QPaintEvent*) {
   draw(rep_, QColor(255, 160, 60), 4.0);  // wide beneath: visible where the two agree
   draw(est_, QColor(80, 220, 255), 1.5);
   p.setPen(QColor(160, 160, 160));
-  p.drawText(r, Qt::AlignRight | Qt::AlignTop, QString::number(hi, 'f', 1));
-  p.drawText(r, Qt::AlignRight | Qt::AlignBottom, QString::number(lo, 'f', 1));
+  p.drawText(r, Qt::AlignRight | Qt::AlignTop, QLocale().toString(hi, 'f', 1));
+  p.drawText(r, Qt::AlignRight | Qt::AlignBottom, QLocale().toString(lo, 'f', 1));
 }
 
 }  // namespace hdrf::gui

@@ -5,6 +5,7 @@
 #include <QLabel>
 #include <QMenu>
 #include <QMessageBox>
+#include <QLocale>
 #include <QPainter>
 #include <QSet>
 #include <QVBoxLayout>
@@ -72,8 +73,8 @@ void ImageView::paintEvent(QPaintEvent*) {
       p.drawLine(x0, y0 + i, x0 + 12, y0 + i);
     }
     p.setPen(Qt::white);
-    p.drawText(x0 + 14, y0 + 8, QString::number(bar_max_, 'g', 2));
-    p.drawText(x0 + 14, y0 + h, QString::number(bar_min_, 'g', 2));
+    p.drawText(x0 + 14, y0 + 8, QLocale().toString(bar_max_, 'g', 2));
+    p.drawText(x0 + 14, y0 + h, QLocale().toString(bar_min_, 'g', 2));
     p.drawText(x0, y0 + h + 14, bar_unit_);
   }
 }

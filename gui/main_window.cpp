@@ -687,7 +687,7 @@ void MainWindow::RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s) 
     views_["depth"]->SetScaleBar(bar, 0, hi, "m");
     views_["depth"]->SetImage(FromColor(cd), [s](int x, int y) {
       const float z = s->images.depth(x, y);
-      return z > 0 ? tr("depth %1 m").arg(z, 0, 'f', 3) : tr("no depth");
+      return z > 0 ? tr("depth %L1 m").arg(z, 0, 'f', 3) : tr("no depth");
     });
   }
 }
@@ -733,7 +733,7 @@ void MainWindow::Render() {
     // Normalized radiance: deviations from the local mean in local standard deviations.
     views_["nr"]->SetScaleBar(grey_bar(), -3, 3, tr("std"));
     views_["nr"]->SetImage(Grey(im.nr, -3.f, 3.f, [](float v) { return v != 0.f; }), [s](int x, int y) {
-      return QStringLiteral("NR %1").arg(s->images.nr(x, y), 0, 'f', 3);
+      return QStringLiteral("NR %L1").arg(s->images.nr(x, y), 0, 'f', 3);
     });
   }
   if (visible("confidence")) {
@@ -741,7 +741,7 @@ void MainWindow::Render() {
     for (std::size_t i = 0; i < im.confidence.size(); ++i) mx = std::max(mx, im.confidence[i]);
     views_["confidence"]->SetScaleBar(grey_bar(), 0, mx, tr("PCF"));
     views_["confidence"]->SetImage(Grey(im.confidence, 0.f, mx, [](float) { return true; }), [s](int x, int y) {
-      return tr("PCF %1 (max channel %2)")
+      return tr("PCF %L1 (max channel %L2)")
           .arg(s->images.confidence(x, y), 0, 'f', 3)
           .arg(s->images.max_confidence(x, y), 0, 'f', 3);
     });
@@ -764,7 +764,7 @@ void MainWindow::Render() {
     views_["model_normals"]->SetImage(img, [s](int x, int y) {
       const Float3 v = s->images.render.normal(x, y);
       const float d = s->images.render.depth(x, y);
-      return d > 0 ? tr("normal %1 %2 %3, depth %4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
+      return d > 0 ? tr("normal %L1 %L2 %L3, depth %L4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
                    : tr("no surface");
     });
   }
@@ -785,7 +785,7 @@ void MainWindow::Render() {
                              .arg(s->frames_total > 0 ? QStringLiteral(" / %1").arg(s->frames_total) : QString())
                              .arg(QString::fromStdString(s->device).toUpper()));
   const QString far = r.depth_beyond_far > 0.25
-                          ? "\n" + tr("%1 % of the view lies beyond %2 m, past the model's ray cast: tracking uses "
+                          ? "\n" + tr("%1 % of the view lies beyond %L2 m, past the model's ray cast: tracking uses "
                                        "nearer surfaces (volume.raycast_far_m)")
                                         .arg(int(100 * r.depth_beyond_far))
                                         .arg(s->raycast_far_m, 0, 'f', 1)
@@ -827,7 +827,7 @@ void MainWindow::Render() {
   const auto& m = r.ms;
   // Per-stage times in two column pairs (four rows).
   const auto cell = [](const QString& name, double ms) {
-    return QStringLiteral("<td>%1</td><td align=right>%2 ms</td>").arg(name).arg(ms, 0, 'f', 1);
+    return QStringLiteral("<td>%1</td><td align=right>%L2 ms</td>").arg(name).arg(ms, 0, 'f', 1);
   };
   const QString gap = QStringLiteral("<td width=16></td>");
   stages_->setText(QStringLiteral("<table><tr>%1%8%2</tr><tr>%3%8%4</tr><tr>%5%8%6</tr><tr>%7</tr></table>")
@@ -835,17 +835,17 @@ void MainWindow::Render() {
                             cell(tr("track"), m.track), cell(tr("compensate"), m.compensate),
                             cell(tr("integrate"), m.integrate), cell(tr("ray cast"), m.raycast),
                             QStringLiteral("<td><b>%1</b></td><td align=right colspan=4><b>%2</b></td>")
-                                .arg(tr("total"), tr("%1 ms (%2 frames/s)")
+                                .arg(tr("total"), tr("%L1 ms (%L2 frames/s)")
                                                       .arg(m.total(), 0, 'f', 1)
                                                       .arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1)),
                             gap));
-  memory_->setText(tr("Volume: %1 of %2 MiB in %3 bricks")
+  memory_->setText(tr("Volume: %L1 of %L2 MiB in %3 bricks")
                        .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
                        .arg(s->volume_budget_mb, 0, 'f', 0)
                        .arg(s->bricks));
   if (s->gpu_budget_mb > 0 && s->device == "cuda")
     memory_->setText(memory_->text() + "\n" +
-                     tr("GPU: %1 of %2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)")
+                     tr("GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)")
                          .arg(double(s->streaming.gpu_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
                          .arg(s->gpu_budget_mb, 0, 'f', 0)
                          .arg(s->streaming.gpu_bricks)

@@ -1,6 +1,7 @@
-// Written by tools/update_translations.sh from the engine's settings registry and the
-// tone-mapping operators' declarations (tests/translations/registry_strings_main.cpp): their
-// words, listed for Qt Linguist's lupdate. Not compiled; do not edit.
+// Written by tools/update_translations.sh from the engine's settings registry, the
+// tone-mapping operators' declarations and the engine's message wordings
+// (tests/translations/registry_strings_main.cpp): their words, listed for Qt Linguist's
+// lupdate. Not compiled; do not edit.
 #include <QtGlobal>
 
 static const char* const kSettingWords[] = {
@@ -217,4 +218,57 @@ static const char* const kToneMappingWords[] = {
     QT_TRANSLATE_NOOP("ToneMapping", "Extra gamma: above 1 lifts the darks."),
     QT_TRANSLATE_NOOP("ToneMapping", "Linear"),
     QT_TRANSLATE_NOOP("ToneMapping", "Radiance scaled and clipped at white: what was measured, clipping included."),
+};
+
+static const char* const kEngineWords[] = {
+    QT_TRANSLATE_NOOP("Engine", "no correspondences"),
+    QT_TRANSLATE_NOOP("Engine", "only %1 % of pixels matched"),
+    QT_TRANSLATE_NOOP("Engine", "ill-conditioned (geometry and texture too poor)"),
+    QT_TRANSLATE_NOOP("Engine", "pose jumped implausibly far"),
+    QT_TRANSLATE_NOOP("Engine", "point-to-surface error %1 cm, %2x the scan's usual %3 cm"),
+    QT_TRANSLATE_NOOP("Engine", "radiance residual %1, %2x the scan's usual %3"),
+    QT_TRANSLATE_NOOP("Engine", "only %1 % of the matched pixels fit the pose"),
+    QT_TRANSLATE_NOOP("Engine", "the exposure the pose implies is %1x the sensor's reported exposure (relative to the scan so far)"),
+    QT_TRANSLATE_NOOP("Engine", "waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed"),
+    QT_TRANSLATE_NOOP("Engine", "confirming the pose after a loss (%1 of %2 frames)"),
+    QT_TRANSLATE_NOOP("Engine", "%1 % of the image is saturated even at the shortest exposure (%2 ms): the brightest parts add nothing to the top of the curve"),
+    QT_TRANSLATE_NOOP("Engine", "the scene spans %1 stops: steps widened to %2 stops to stay within %3 exposures"),
+    QT_TRANSLATE_NOOP("Engine", "the planned sweep covers %1 % of the levels of channel %2 (widest gap: levels %3 to %4): the curve is interpolated there"),
+    QT_TRANSLATE_NOOP("Engine", "the planned sweep covers %1 % of the levels of channel %2: the curve is interpolated there"),
+    QT_TRANSLATE_NOOP("Engine", "%1: auto exposure is on (as the camera reports it); the camera would choose its own exposures and the sweep's would not be the ones recorded. Lock auto exposure and try again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: auto white balance is on (as the camera reports it); it would change the colour gains between exposures. Lock white balance and try again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: the images did not brighten when the exposure was set 2 stops longer (mean level %2 at %3 ms, %4 at %5 ms); the camera is not taking the exposure it is given (automatic exposure still acting?). Lock auto exposure and try again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: even at the shortest exposure (%2 ms) %3 % of the image is saturated. Dim the lights, point the camera at a darker scene or lower its gain, then plan again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: even at the longest exposure (%2 ms) %3 % of the image is black. Light the scene, or point the camera at a brighter one, then plan again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: the camera's exposures (%2 ms to %3 ms) give fewer than 3 distinct exposures; calibration needs 3 or more"),
+    QT_TRANSLATE_NOOP("Engine", "%1: the planned sweep covers only %2 % of the levels of channel %3 (widest gap: levels %4 to %5). Point the camera at a scene with dark and bright parts and many shades between (not a wall or a grey card), then plan again."),
+    QT_TRANSLATE_NOOP("Engine", "%1: the planned sweep covers only %2 % of the levels of channel %3. Point the camera at a scene with dark and bright parts and many shades between (not a wall or a grey card), then plan again."),
+    QT_TRANSLATE_NOOP("Engine", "planning cancelled"),
+    QT_TRANSLATE_NOOP("Engine", "the image changed between repeats (%1 % of image regions changed brightness order): the camera or the scene moved"),
+    QT_TRANSLATE_NOOP("Engine", "the brightness changed by %1 % between repeats: flickering light"),
+    QT_TRANSLATE_NOOP("Engine", "the image no longer matches the exposure before (%1 % of image regions changed brightness order): the camera or the scene moved"),
+    QT_TRANSLATE_NOOP("Engine", "re-capturing %1 ms: %2"),
+    QT_TRANSLATE_NOOP("Engine", "At %1 ms (step %2 of %3) %4, %5 times in a row. %6 The %7 steps captured so far are kept in %8."),
+    QT_TRANSLATE_NOOP("Engine", "Switch off fluorescent or dimmed LED lights (or use daylight), then resume."),
+    QT_TRANSLATE_NOOP("Engine", "The camera was moved: put it back exactly where it was, or start a new sweep."),
+    QT_TRANSLATE_NOOP("Engine", "Put the camera on a tripod or a table and keep the scene still, then resume."),
+    QT_TRANSLATE_NOOP("Engine", "%1 of %2 exposures disagree with the merge by more than %3 stops (worst %4 stops at %5 ms): the exposure times do not match the images, or the scene changed"),
+    QT_TRANSLATE_NOOP("Engine", "%1 of %2 exposures disagree with the merge by more than %3 stops (worst %4 stops at %5 ms); good is below %6 stops"),
+    QT_TRANSLATE_NOOP("Engine", "too few well-exposed pixels at %1 ms to check the fit on a held-back exposure"),
+    QT_TRANSLATE_NOOP("Engine", "the %1 ms exposure, held back, is predicted from the others only within %2 stops (limit %3 stops): the response does not hold between exposures"),
+    QT_TRANSLATE_NOOP("Engine", "the %1 ms exposure, held back, is predicted within %2 stops (good below %3 stops)"),
+    QT_TRANSLATE_NOOP("Engine", "the fit without the %1 ms exposure failed: %2"),
+    QT_TRANSLATE_NOOP("Engine", "%1 % of the %2 levels are covered (levels %3 to %4 not seen): the curve is interpolated there; a scene with more distinct brightnesses covers them"),
+    QT_TRANSLATE_NOOP("Engine", "exposures up to %1 stops apart; steps of a stop or less pin the curve down near saturation"),
+    QT_TRANSLATE_NOOP("Engine", "the noise level function does not fit the measured noise (rms relative misfit %1, limit %2): it is not saved"),
+    QT_TRANSLATE_NOOP("Engine", "device '%1' cannot register depth to colour: depth is used as delivered"),
+    QT_TRANSLATE_NOOP("Engine", "%1 is missing: the built-in Asus Xtion profile is assumed"),
+    QT_TRANSLATE_NOOP("Engine", "%1 is missing: every frame is of unknown exposure"),
+    QT_TRANSLATE_NOOP("Engine", "no profile for device '%1' (serial %2) in %3: using the built-in Asus Xtion profile. Its response and intrinsics are not this device's own; calibrate it with hdrfusion-calibration-wizard (or hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores its profile as %4"),
+    QT_TRANSLATE_NOOP("Engine", "no profile for device '%1' in %2: using the built-in Asus Xtion profile. Its response and intrinsics are not this device's own; calibrate it with hdrfusion-calibration-wizard (or hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores its profile as %3"),
+    QT_TRANSLATE_NOOP("Engine", "the profile gives no exposure unit for this device ('hdrfusion.device.exposure_ms_per_unit'): frames are recorded as of unknown exposure and the engine estimates exposure ratios itself"),
+    QT_TRANSLATE_NOOP("Engine", "%1: the 'synthetic' block is not this project's (it holds other keys); ignored"),
+    QT_TRANSLATE_NOOP("Engine", "%1: the 'synthetic' block is not this project's (it holds no object); ignored"),
+    QT_TRANSLATE_NOOP("Engine", "%1 has no 'response' calibration: the sRGB curve is assumed, so the HDR radiance is only as good as that guess"),
+    QT_TRANSLATE_NOOP("Engine", "the scan has no keyframes: the texture holds the volume's radiance only (as sharp as the voxels)"),
 };

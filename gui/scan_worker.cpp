@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "calibration_wizard/translation.h"
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
@@ -107,7 +108,7 @@ void ScanWorker::SaveProject(const QString& path) {
     saved_frames_ = saved_by_user_ = session_->frames();
     DropRecovery();
     std::error_code ec;
-    emit projectSaved(true, path, tr("Saved %1 frames to %2 (%3 MiB)")
+    emit projectSaved(true, path, tr("Saved %1 frames to %2 (%L3 MiB)")
                                       .arg(session_->frames())
                                       .arg(path)
                                       .arg(double(std::filesystem::file_size(file, ec)) / (1 << 20), 0, 'f', 1));
@@ -211,7 +212,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
     if (live_) msg = tr("Live preview: %1 (Start scans)").arg(QString::fromStdString(source_->description()));
     const pipeline::Pipeline& pipe = session_->pipeline();
     if (!pipe.device_note().empty()) msg += " — " + QString::fromStdString(pipe.device_note());
-    for (const std::string& w : source_->sensor().warnings) msg += " — " + QString::fromStdString(Printable(w));
+    for (const std::string& w : source_->sensor().warnings) msg += " — " + wizard::EngineText(w);
     emit stateChanged(false, msg);
     if (live_) {
       ListSensors();
@@ -441,7 +442,7 @@ void ScanWorker::FinishRecording(const QString& why) {
   if (recorder_) {
     const sensors::RecordingStats st = recorder_->Finish();
     recorder_.reset();
-    QString msg = tr("Recorded %1 frames (%2 MB, %3 s, %4 dropped) to %5")
+    QString msg = tr("Recorded %1 frames (%L2 MB, %L3 s, %4 dropped) to %5")
                       .arg(st.written)
                       .arg(st.bytes / 1e6, 0, 'f', 1)
                       .arg(st.seconds, 0, 'f', 1)
@@ -652,7 +653,7 @@ void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& opti
                        3 * r.preview.width(), QImage::Format_RGB888)
                     .copy();
     QString msg = tr("Wrote %1 files into %2: %3").arg(r.files.size()).arg(folder, QString::fromStdString(r.Summary()));
-    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(QString::fromStdString(Printable(w)));
+    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(wizard::EngineText(w));
     emit assetDone(true, msg, preview);
   } catch (const Cancelled&) {
     emit assetDone(false, tr("Export cancelled; the folder was left as it was"), {});

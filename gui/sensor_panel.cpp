@@ -264,10 +264,10 @@ void SensorPanel::ShowStatus(const LiveStatus& s) {
   else if (s.exposure.auto_exposure)
     exposure = tr("auto exposure (the engine estimates each frame's)");
   else if (s.ms_per_unit)
-    exposure = tr("exposure %1 ms, gain %2").arg(s.exposure.exposure_raw * *s.ms_per_unit, 0, 'f', 1).arg(s.exposure.gain);
+    exposure = tr("exposure %L1 ms, gain %L2").arg(s.exposure.exposure_raw * *s.ms_per_unit, 0, 'f', 1).arg(s.exposure.gain);
   else
     exposure = tr("exposure %1 (raw), gain %2").arg(s.exposure.exposure_raw).arg(s.exposure.gain);
-  status_->setText(tr("%1: %2; %3 frames/s; %4 dropped")
+  status_->setText(tr("%1: %2; %L3 frames/s; %4 dropped")
                        .arg(QString::fromStdString(s.device.name), exposure)
                        .arg(s.fps, 0, 'f', 1)
                        .arg(s.dropped));
@@ -279,7 +279,7 @@ void SensorPanel::ShowStatus(const LiveStatus& s) {
   // bring back a recording that has just ended).
   if (s.recording && recording_) {
     const auto& r = s.recording_stats;
-    recording_label_->setText(tr("Recording to %1: %2 frames, %3 MB, %4 s, %5 dropped")
+    recording_label_->setText(tr("Recording to %1: %2 frames, %L3 MB, %L4 s, %5 dropped")
                                   .arg(QDir::toNativeSeparators(QString::fromStdString(s.recording_path)))
                                   .arg(r.written)
                                   .arg(r.bytes / 1e6, 0, 'f', 1)

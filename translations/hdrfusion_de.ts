@@ -2,6 +2,209 @@
 <!DOCTYPE TS>
 <TS version="2.1" language="de_DE">
 <context>
+    <name>Engine</name>
+    <message>
+        <source>no correspondences</source>
+        <translation>keine Korrespondenzen</translation>
+    </message>
+    <message>
+        <source>only %1 % of pixels matched</source>
+        <translation>nur %1 % der Pixel zugeordnet</translation>
+    </message>
+    <message>
+        <source>ill-conditioned (geometry and texture too poor)</source>
+        <translation>schlecht konditioniert (zu wenig Geometrie und Textur)</translation>
+    </message>
+    <message>
+        <source>pose jumped implausibly far</source>
+        <translation>die Pose sprang unplausibel weit</translation>
+    </message>
+    <message>
+        <source>point-to-surface error %1 cm, %2x the scan&apos;s usual %3 cm</source>
+        <translation>Punkt-zu-Fläche-Fehler %1 cm, %2-mal so groß wie die für diesen Scan üblichen %3 cm</translation>
+    </message>
+    <message>
+        <source>radiance residual %1, %2x the scan&apos;s usual %3</source>
+        <translation>Radianz-Residuum %1, %2-mal so groß wie das für diesen Scan übliche %3</translation>
+    </message>
+    <message>
+        <source>only %1 % of the matched pixels fit the pose</source>
+        <translation>nur %1 % der zugeordneten Pixel passen zur Pose</translation>
+    </message>
+    <message>
+        <source>the exposure the pose implies is %1x the sensor&apos;s reported exposure (relative to the scan so far)</source>
+        <translation>die aus der Pose folgende Belichtung ist das %1-Fache der vom Sensor gemeldeten (relativ zum bisherigen Scan)</translation>
+    </message>
+    <message>
+        <source>waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed</source>
+        <translation>warte auf ein Bild, das das Modell verankert: %1 % seiner Pixel haben Tiefe, %2 % sind nötig</translation>
+    </message>
+    <message>
+        <source>confirming the pose after a loss (%1 of %2 frames)</source>
+        <translation>bestätige die Pose nach einem Verlust (%1 von %2 Bildern)</translation>
+    </message>
+    <message>
+        <source>%1 % of the image is saturated even at the shortest exposure (%2 ms): the brightest parts add nothing to the top of the curve</source>
+        <translation>%1 % des Bildes sind selbst bei der kürzesten Belichtung (%2 ms) gesättigt: die hellsten Teile tragen nichts zum oberen Ende der Kurve bei</translation>
+    </message>
+    <message>
+        <source>the scene spans %1 stops: steps widened to %2 stops to stay within %3 exposures</source>
+        <translation>die Szene umfasst %1 Blendenstufen: Schritte auf %2 Blendenstufen verbreitert, um bei höchstens %3 Belichtungen zu bleiben</translation>
+    </message>
+    <message>
+        <source>the planned sweep covers %1 % of the levels of channel %2 (widest gap: levels %3 to %4): the curve is interpolated there</source>
+        <translation>die geplante Belichtungsreihe deckt %1 % der Stufen von Kanal %2 ab (größte Lücke: Stufen %3 bis %4): dort wird die Kurve interpoliert</translation>
+    </message>
+    <message>
+        <source>the planned sweep covers %1 % of the levels of channel %2: the curve is interpolated there</source>
+        <translation>die geplante Belichtungsreihe deckt %1 % der Stufen von Kanal %2 ab: in den Lücken wird die Kurve interpoliert</translation>
+    </message>
+    <message>
+        <source>%1: auto exposure is on (as the camera reports it); the camera would choose its own exposures and the sweep&apos;s would not be the ones recorded. Lock auto exposure and try again.</source>
+        <translation>%1: die automatische Belichtung ist eingeschaltet (laut Kamera); die Kamera würde ihre eigenen Belichtungen wählen, und die aufgezeichneten wären nicht die der Belichtungsreihe. Automatische Belichtung sperren und erneut versuchen.</translation>
+    </message>
+    <message>
+        <source>%1: auto white balance is on (as the camera reports it); it would change the colour gains between exposures. Lock white balance and try again.</source>
+        <translation>%1: der automatische Weißabgleich ist eingeschaltet (laut Kamera); er würde die Farbverstärkungen zwischen den Belichtungen ändern. Weißabgleich sperren und erneut versuchen.</translation>
+    </message>
+    <message>
+        <source>%1: the images did not brighten when the exposure was set 2 stops longer (mean level %2 at %3 ms, %4 at %5 ms); the camera is not taking the exposure it is given (automatic exposure still acting?). Lock auto exposure and try again.</source>
+        <translation>%1: die Bilder wurden nicht heller, als die Belichtung um 2 Blendenstufen verlängert wurde (mittlere Stufe %2 bei %3 ms, %4 bei %5 ms); die Kamera übernimmt die vorgegebene Belichtung nicht (wirkt die automatische Belichtung noch?). Automatische Belichtung sperren und erneut versuchen.</translation>
+    </message>
+    <message>
+        <source>%1: even at the shortest exposure (%2 ms) %3 % of the image is saturated. Dim the lights, point the camera at a darker scene or lower its gain, then plan again.</source>
+        <translation>%1: selbst bei der kürzesten Belichtung (%2 ms) sind %3 % des Bildes gesättigt. Licht dämpfen, die Kamera auf eine dunklere Szene richten oder ihre Verstärkung senken, dann erneut planen.</translation>
+    </message>
+    <message>
+        <source>%1: even at the longest exposure (%2 ms) %3 % of the image is black. Light the scene, or point the camera at a brighter one, then plan again.</source>
+        <translation>%1: selbst bei der längsten Belichtung (%2 ms) sind %3 % des Bildes schwarz. Die Szene beleuchten oder die Kamera auf eine hellere richten, dann erneut planen.</translation>
+    </message>
+    <message>
+        <source>%1: the camera&apos;s exposures (%2 ms to %3 ms) give fewer than 3 distinct exposures; calibration needs 3 or more</source>
+        <translation>%1: die Belichtungen der Kamera (%2 ms bis %3 ms) ergeben weniger als 3 verschiedene Belichtungen; die Kalibrierung braucht 3 oder mehr</translation>
+    </message>
+    <message>
+        <source>%1: the planned sweep covers only %2 % of the levels of channel %3 (widest gap: levels %4 to %5). Point the camera at a scene with dark and bright parts and many shades between (not a wall or a grey card), then plan again.</source>
+        <translation>%1: die geplante Belichtungsreihe deckt nur %2 % der Stufen von Kanal %3 ab (größte Lücke: Stufen %4 bis %5). Die Kamera auf eine Szene mit dunklen und hellen Teilen und vielen Abstufungen dazwischen richten (keine Wand, keine Graukarte), dann erneut planen.</translation>
+    </message>
+    <message>
+        <source>%1: the planned sweep covers only %2 % of the levels of channel %3. Point the camera at a scene with dark and bright parts and many shades between (not a wall or a grey card), then plan again.</source>
+        <translation>%1: die geplante Belichtungsreihe deckt nur %2 % der Stufen von Kanal %3 ab. Die Kamera auf eine Szene mit dunklen und hellen Teilen und vielen Abstufungen dazwischen richten (keine Wand, keine Graukarte), dann erneut planen.</translation>
+    </message>
+    <message>
+        <source>planning cancelled</source>
+        <translation>Planung abgebrochen</translation>
+    </message>
+    <message>
+        <source>the image changed between repeats (%1 % of image regions changed brightness order): the camera or the scene moved</source>
+        <translation>das Bild änderte sich zwischen den Wiederholungen (in %1 % der Bildbereiche änderte sich die Helligkeitsreihenfolge): Kamera oder Szene haben sich bewegt</translation>
+    </message>
+    <message>
+        <source>the brightness changed by %1 % between repeats: flickering light</source>
+        <translation>die Helligkeit änderte sich zwischen den Wiederholungen um %1 %: flackerndes Licht</translation>
+    </message>
+    <message>
+        <source>the image no longer matches the exposure before (%1 % of image regions changed brightness order): the camera or the scene moved</source>
+        <translation>das Bild passt nicht mehr zur vorigen Belichtung (in %1 % der Bildbereiche änderte sich die Helligkeitsreihenfolge): Kamera oder Szene haben sich bewegt</translation>
+    </message>
+    <message>
+        <source>re-capturing %1 ms: %2</source>
+        <translation>nehme %1 ms erneut auf: %2</translation>
+    </message>
+    <message>
+        <source>At %1 ms (step %2 of %3) %4, %5 times in a row. %6 The %7 steps captured so far are kept in %8.</source>
+        <translation>Bei %1 ms (Schritt %2 von %3): %4, %5-mal in Folge. %6 Die %7 bisher aufgenommenen Schritte bleiben in %8 erhalten.</translation>
+    </message>
+    <message>
+        <source>Switch off fluorescent or dimmed LED lights (or use daylight), then resume.</source>
+        <translation>Leuchtstofflampen oder gedimmte LED-Lampen ausschalten (oder Tageslicht nutzen), dann fortsetzen.</translation>
+    </message>
+    <message>
+        <source>The camera was moved: put it back exactly where it was, or start a new sweep.</source>
+        <translation>Die Kamera wurde bewegt: sie genau an ihren Platz zurückstellen oder eine neue Belichtungsreihe beginnen.</translation>
+    </message>
+    <message>
+        <source>Put the camera on a tripod or a table and keep the scene still, then resume.</source>
+        <translation>Die Kamera auf ein Stativ oder einen Tisch stellen und die Szene ruhig halten, dann fortsetzen.</translation>
+    </message>
+    <message>
+        <source>%1 of %2 exposures disagree with the merge by more than %3 stops (worst %4 stops at %5 ms): the exposure times do not match the images, or the scene changed</source>
+        <translation>%1 von %2 Belichtungen weichen um mehr als %3 Blendenstufen von der Zusammenführung ab (am stärksten %4 Blendenstufen bei %5 ms): die Belichtungszeiten passen nicht zu den Bildern, oder die Szene hat sich geändert</translation>
+    </message>
+    <message>
+        <source>%1 of %2 exposures disagree with the merge by more than %3 stops (worst %4 stops at %5 ms); good is below %6 stops</source>
+        <translation>%1 von %2 Belichtungen weichen um mehr als %3 Blendenstufen von der Zusammenführung ab (am stärksten %4 Blendenstufen bei %5 ms); gut ist unter %6 Blendenstufen</translation>
+    </message>
+    <message>
+        <source>too few well-exposed pixels at %1 ms to check the fit on a held-back exposure</source>
+        <translation>zu wenige gut belichtete Pixel bei %1 ms, um die Anpassung an einer zurückgehaltenen Belichtung zu prüfen</translation>
+    </message>
+    <message>
+        <source>the %1 ms exposure, held back, is predicted from the others only within %2 stops (limit %3 stops): the response does not hold between exposures</source>
+        <translation>die zurückgehaltene Belichtung von %1 ms wird aus den anderen nur auf %2 Blendenstufen genau vorhergesagt (Grenze %3 Blendenstufen): die Antwortkurve gilt nicht zwischen den Belichtungen</translation>
+    </message>
+    <message>
+        <source>the %1 ms exposure, held back, is predicted within %2 stops (good below %3 stops)</source>
+        <translation>die zurückgehaltene Belichtung von %1 ms wird auf %2 Blendenstufen genau vorhergesagt (gut unter %3 Blendenstufen)</translation>
+    </message>
+    <message>
+        <source>the fit without the %1 ms exposure failed: %2</source>
+        <translation>die Anpassung ohne die Belichtung von %1 ms schlug fehl: %2</translation>
+    </message>
+    <message>
+        <source>%1 % of the %2 levels are covered (levels %3 to %4 not seen): the curve is interpolated there; a scene with more distinct brightnesses covers them</source>
+        <translation>%1 % der Stufen von %2 sind abgedeckt (Stufen %3 bis %4 nicht gesehen): dort wird die Kurve interpoliert; eine Szene mit mehr verschiedenen Helligkeiten deckt sie ab</translation>
+    </message>
+    <message>
+        <source>exposures up to %1 stops apart; steps of a stop or less pin the curve down near saturation</source>
+        <translation>Belichtungen bis zu %1 Blendenstufen auseinander; Schritte von einer Blendenstufe oder weniger legen die Kurve nahe der Sättigung fest</translation>
+    </message>
+    <message>
+        <source>the noise level function does not fit the measured noise (rms relative misfit %1, limit %2): it is not saved</source>
+        <translation>die Rauschfunktion passt nicht zum gemessenen Rauschen (relative RMS-Abweichung %1, Grenze %2): sie wird nicht gespeichert</translation>
+    </message>
+    <message>
+        <source>device &apos;%1&apos; cannot register depth to colour: depth is used as delivered</source>
+        <translation>Gerät „%1“ kann die Tiefe nicht auf die Farbe registrieren: die Tiefe wird wie geliefert verwendet</translation>
+    </message>
+    <message>
+        <source>%1 is missing: the built-in Asus Xtion profile is assumed</source>
+        <translation>%1 fehlt: das eingebaute Asus-Xtion-Profil wird angenommen</translation>
+    </message>
+    <message>
+        <source>%1 is missing: every frame is of unknown exposure</source>
+        <translation>%1 fehlt: die Belichtung jedes Bildes ist unbekannt</translation>
+    </message>
+    <message>
+        <source>no profile for device &apos;%1&apos; (serial %2) in %3: using the built-in Asus Xtion profile. Its response and intrinsics are not this device&apos;s own; calibrate it with hdrfusion-calibration-wizard (or hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores its profile as %4</source>
+        <translation>kein Profil für Gerät „%1“ (Seriennummer %2) in %3: das eingebaute Asus-Xtion-Profil wird verwendet. Seine Antwortkurve und Intrinsik sind nicht die dieses Geräts; kalibrieren Sie es mit hdrfusion-calibration-wizard (oder hdrfusion capture-sweep, dann hdrfusion calibrate --save-profile), das sein Profil als %4 speichert</translation>
+    </message>
+    <message>
+        <source>no profile for device &apos;%1&apos; in %2: using the built-in Asus Xtion profile. Its response and intrinsics are not this device&apos;s own; calibrate it with hdrfusion-calibration-wizard (or hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores its profile as %3</source>
+        <translation>kein Profil für Gerät „%1“ in %2: das eingebaute Asus-Xtion-Profil wird verwendet. Seine Antwortkurve und Intrinsik sind nicht die dieses Geräts; kalibrieren Sie es mit hdrfusion-calibration-wizard (oder hdrfusion capture-sweep, dann hdrfusion calibrate --save-profile), das sein Profil als %3 speichert</translation>
+    </message>
+    <message>
+        <source>the profile gives no exposure unit for this device (&apos;hdrfusion.device.exposure_ms_per_unit&apos;): frames are recorded as of unknown exposure and the engine estimates exposure ratios itself</source>
+        <translation>das Profil nennt keine Belichtungseinheit für dieses Gerät („hdrfusion.device.exposure_ms_per_unit“): Bilder werden mit unbekannter Belichtung aufgezeichnet, und die Engine schätzt die Belichtungsverhältnisse selbst</translation>
+    </message>
+    <message>
+        <source>%1: the &apos;synthetic&apos; block is not this project&apos;s (it holds other keys); ignored</source>
+        <translation>%1: der Block „synthetic“ stammt nicht von diesem Projekt (er enthält andere Schlüssel); ignoriert</translation>
+    </message>
+    <message>
+        <source>%1: the &apos;synthetic&apos; block is not this project&apos;s (it holds no object); ignored</source>
+        <translation>%1: der Block „synthetic“ stammt nicht von diesem Projekt (er enthält kein Objekt); ignoriert</translation>
+    </message>
+    <message>
+        <source>%1 has no &apos;response&apos; calibration: the sRGB curve is assumed, so the HDR radiance is only as good as that guess</source>
+        <translation>%1 enthält keine „response“-Kalibrierung: die sRGB-Kurve wird angenommen, die HDR-Radianz ist also nur so gut wie diese Annahme</translation>
+    </message>
+    <message>
+        <source>the scan has no keyframes: the texture holds the volume&apos;s radiance only (as sharp as the voxels)</source>
+        <translation>der Scan hat keine Schlüsselbilder: die Textur enthält nur die Radianz des Volumens (so scharf wie die Voxel)</translation>
+    </message>
+</context>
+<context>
     <name>QObject</name>
     <message>
         <source>on or off</source>
@@ -1483,8 +1686,8 @@ Open it to continue or export it?</source>
         <translation>Bild %1%2 auf der %3</translation>
     </message>
     <message>
-        <source>%1 % of the view lies beyond %2 m, past the model&apos;s ray cast: tracking uses nearer surfaces (volume.raycast_far_m)</source>
-        <translation>%1 % der Ansicht liegen weiter als %2 m, jenseits des Raycasts des Modells: das Tracking nutzt nähere Flächen (volume.raycast_far_m)</translation>
+        <source>%1 % of the view lies beyond %L2 m, past the model&apos;s ray cast: tracking uses nearer surfaces (volume.raycast_far_m)</source>
+        <translation>%1 % der Ansicht liegen weiter als %L2 m, jenseits des Raycasts des Modells: das Tracking nutzt nähere Flächen (volume.raycast_far_m)</translation>
     </message>
     <message>
         <source>WAITING: %1</source>
@@ -1547,36 +1750,36 @@ Open it to continue or export it?</source>
         <translation>gesamt</translation>
     </message>
     <message>
-        <source>%1 ms (%2 frames/s)</source>
-        <translation>%1 ms (%2 Bilder/s)</translation>
+        <source>%L1 ms (%L2 frames/s)</source>
+        <translation>%L1 ms (%L2 Bilder/s)</translation>
     </message>
     <message>
-        <source>Volume: %1 of %2 MiB in %3 bricks</source>
-        <translation>Volumen: %1 von %2 MiB in %3 Bricks</translation>
+        <source>Volume: %L1 of %L2 MiB in %3 bricks</source>
+        <translation>Volumen: %L1 von %L2 MiB in %3 Bricks</translation>
     </message>
     <message>
-        <source>GPU: %1 of %2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)</source>
-        <translation>GPU: %1 von %2 MiB, %3 Bricks; Hauptspeicher: %4 Bricks (%5 ausgelagert, %6 zurückgeholt)</translation>
+        <source>GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)</source>
+        <translation>GPU: %L1 von %L2 MiB, %3 Bricks; Hauptspeicher: %4 Bricks (%5 ausgelagert, %6 zurückgeholt)</translation>
     </message>
     <message>
         <source>VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and exported.</source>
         <translation>VOLUMEN VOLL: %1. Neue Flächen werden nicht hinzugefügt; das Modell bleibt erhalten und kann gespeichert und exportiert werden.</translation>
     </message>
     <message>
-        <source>depth %1 m</source>
-        <translation>Tiefe %1 m</translation>
+        <source>depth %L1 m</source>
+        <translation>Tiefe %L1 m</translation>
     </message>
     <message>
         <source>no depth</source>
         <translation>keine Tiefe</translation>
     </message>
     <message>
-        <source>PCF %1 (max channel %2)</source>
-        <translation>PCF %1 (größter Kanal %2)</translation>
+        <source>PCF %L1 (max channel %L2)</source>
+        <translation>PCF %L1 (größter Kanal %L2)</translation>
     </message>
     <message>
-        <source>normal %1 %2 %3, depth %4 m</source>
-        <translation>Normale %1 %2 %3, Tiefe %4 m</translation>
+        <source>normal %L1 %L2 %L3, depth %L4 m</source>
+        <translation>Normale %L1 %L2 %L3, Tiefe %L4 m</translation>
     </message>
     <message>
         <source>no surface</source>
@@ -1614,8 +1817,8 @@ Open it to continue or export it?</source>
         <translation>Nichts zu speichern: noch kein Bild gescannt</translation>
     </message>
     <message>
-        <source>Saved %1 frames to %2 (%3 MiB)</source>
-        <translation>%1 Bilder in %2 gespeichert (%3 MiB)</translation>
+        <source>Saved %1 frames to %2 (%L3 MiB)</source>
+        <translation>%1 Bilder in %2 gespeichert (%L3 MiB)</translation>
     </message>
     <message>
         <source>Cannot save the project: %1</source>
@@ -1722,8 +1925,8 @@ Open it to continue or export it?</source>
         <translation>Aufnahme nicht möglich: %1</translation>
     </message>
     <message>
-        <source>Recorded %1 frames (%2 MB, %3 s, %4 dropped) to %5</source>
-        <translation>%1 Bilder aufgenommen (%2 MB, %3 s, %4 verworfen) nach %5</translation>
+        <source>Recorded %1 frames (%L2 MB, %L3 s, %4 dropped) to %5</source>
+        <translation>%1 Bilder aufgenommen (%L2 MB, %L3 s, %4 verworfen) nach %5</translation>
     </message>
     <message>
         <source>Recording ended early: %1. %2</source>
@@ -1997,24 +2200,24 @@ Open it to continue or export it?</source>
         <translation>Belichtungsautomatik (die Engine schätzt die jedes Bildes)</translation>
     </message>
     <message>
-        <source>exposure %1 ms, gain %2</source>
-        <translation>Belichtung %1 ms, Verstärkung %2</translation>
+        <source>exposure %L1 ms, gain %L2</source>
+        <translation>Belichtung %L1 ms, Verstärkung %L2</translation>
     </message>
     <message>
         <source>exposure %1 (raw), gain %2</source>
         <translation>Belichtung %1 (roh), Verstärkung %2</translation>
     </message>
     <message>
-        <source>%1: %2; %3 frames/s; %4 dropped</source>
-        <translation>%1: %2; %3 Bilder/s; %4 verworfen</translation>
+        <source>%1: %2; %L3 frames/s; %4 dropped</source>
+        <translation>%1: %2; %L3 Bilder/s; %4 verworfen</translation>
     </message>
     <message>
         <source>Dropped: frames the camera sent that were not read in time (the scan is slower than the camera, or the link lost them)</source>
         <translation>Verworfen: Bilder, die die Kamera sandte, die aber nicht rechtzeitig gelesen wurden (der Scan ist langsamer als die Kamera, oder die Verbindung hat sie verloren)</translation>
     </message>
     <message>
-        <source>Recording to %1: %2 frames, %3 MB, %4 s, %5 dropped</source>
-        <translation>Aufnahme nach %1: %2 Bilder, %3 MB, %4 s, %5 verworfen</translation>
+        <source>Recording to %1: %2 frames, %L3 MB, %L4 s, %5 dropped</source>
+        <translation>Aufnahme nach %1: %2 Bilder, %L3 MB, %L4 s, %5 verworfen</translation>
     </message>
 </context>
 <context>
@@ -2191,12 +2394,12 @@ Open it to continue or export it?</source>
         <translation>fertig</translation>
     </message>
     <message>
-        <source>&lt;b&gt;%1&lt;/b&gt;: rms log residual R %2, G %3, B %4.</source>
-        <translation>&lt;b&gt;%1&lt;/b&gt;: RMS-Log-Residuum R %2, G %3, B %4.</translation>
+        <source>&lt;b&gt;%1&lt;/b&gt;: rms log residual R %L2, G %L3, B %L4.</source>
+        <translation>&lt;b&gt;%1&lt;/b&gt;: RMS-Log-Residuum R %L2, G %L3, B %L4.</translation>
     </message>
     <message>
-        <source> Noise: σs %1 / %2 / %3, σc %4 / %5 / %6.</source>
-        <translation> Rauschen: σs %1 / %2 / %3, σc %4 / %5 / %6.</translation>
+        <source> Noise: σs %L1 / %L2 / %L3, σc %L4 / %L5 / %L6.</source>
+        <translation> Rauschen: σs %L1 / %L2 / %L3, σc %L4 / %L5 / %L6.</translation>
     </message>
     <message>
         <source> Noise not fitted: %1</source>
@@ -2431,8 +2634,8 @@ Open it to continue or export it?</source>
         <translation>aus</translation>
     </message>
     <message>
-        <source>Histogram: %1 % saturated, %2 % black</source>
-        <translation>Histogramm: %1 % gesättigt, %2 % schwarz</translation>
+        <source>Histogram: %L1 % saturated, %L2 % black</source>
+        <translation>Histogramm: %L1 % gesättigt, %L2 % schwarz</translation>
     </message>
     <message>
         <source>level</source>
@@ -2613,8 +2816,8 @@ Open it to continue or export it?</source>
         <translation>Urteil: %1</translation>
     </message>
     <message>
-        <source>Held back %1 ms: predicted from the others within %2 stops (median). Levels covered: %3. Noise level function: %4.</source>
-        <translation>Zurückgehalten %1 ms: aus den anderen auf %2 Blendenstufen genau vorhergesagt (Median). Abgedeckte Stufen: %3. Rauschfunktion: %4.</translation>
+        <source>Held back %L1 ms: predicted from the others within %L2 stops (median). Levels covered: %3. Noise level function: %4.</source>
+        <translation>Zurückgehalten %L1 ms: aus den anderen auf %L2 Blendenstufen genau vorhergesagt (Median). Abgedeckte Stufen: %3. Rauschfunktion: %4.</translation>
     </message>
     <message>
         <source>saved</source>

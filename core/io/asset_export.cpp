@@ -11,6 +11,7 @@
 #include <random>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "io/exr.h"
 #include "io/gltf.h"
 #include "io/image_io.h"
@@ -235,8 +236,7 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
       views = pipeline::MakeBakeViews(scan.keyframes->keyframes, scan.keyframes->sensor, scan.keyframes->pcf_power);
       for (mesh::BakeView& v : views) v.T_world_camera = Pose(wf.transform) * v.T_world_camera;
     } else {
-      res.warnings.push_back("the scan has no keyframes: the texture holds the volume's radiance only (as sharp as "
-                             "the voxels)");
+      res.warnings.push_back(Say(words::kNoKeyframes));
     }
     baked = mesh::BakeTexture(*atlas, views, o.bake, [&](double f) { return !progress || progress("texture", 0.3 + 0.5 * f); });
     res.atlas_width = atlas->width;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "io/json_file.h"
 #include "io/output_file.h"
 
@@ -166,8 +167,8 @@ SensorInfo SensorFromJson(const std::filesystem::path& file, const json& j) {
     if (ours && !s.synthetic)
       s.synthetic = SensorInfo::Synthetic{syn["scene"].get<std::string>(), syn["seed"].get<std::uint32_t>()};
     else if (!ours)
-      s.warnings.push_back(file.string() + ": the 'synthetic' block is not this project's (it holds " +
-                           (syn.is_object() ? "other keys" : "no object") + "); ignored");
+      s.warnings.push_back(
+          Say(syn.is_object() ? words::kForeignSyntheticKeys : words::kForeignSyntheticValue, {file.string()}));
   }
   return s;
 }

@@ -1,6 +1,7 @@
 // A recorded sequence (docs/formats.md) as a pipeline frame source.
 #pragma once
 
+#include "common/message.h"
 #include "io/sequence.h"
 #include "pipeline/frame_source.h"
 
@@ -26,9 +27,7 @@ class SequenceFrameSource : public pipeline::FrameSource {
   // sRGB curve, with a warning that says so.
   void AssumeSrgbResponse() {
     sensor_.response = radiometry::InverseResponse::Srgb();
-    sensor_.warnings.push_back((seq_.folder() / "sensor.json").string() +
-                               " has no 'response' calibration: the sRGB curve is assumed, so the HDR "
-                               "radiance is only as good as that guess");
+    sensor_.warnings.push_back(Say(words::kSrgbAssumed, {(seq_.folder() / "sensor.json").string()}));
   }
   std::string description() const override { return "sequence " + seq_.folder().string(); }
   bool Skip(int n) override {

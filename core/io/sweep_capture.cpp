@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/message.h"
 #include "io/json_file.h"
 #include "io/image_io.h"
 #include "io/sequence.h"
@@ -19,16 +20,8 @@ using FixAt = CaptureProblem::FixAt;
 
 namespace {
 
-std::string Ms(double ms) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g ms", ms);
-  return buf;
-}
-std::string Percent(double share) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.0f %%", 100 * share);
-  return buf;
-}
+// A share as a whole percentage, the number only (the wordings say "%").
+std::string Percent(double share) { return Num(100 * share, 0); }
 
 bool Cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(); }
 
@@ -123,14 +116,9 @@ void SweepPlanOptions::Check() const {
 void VerifyManualExposure(SweepCamera& camera) {
   const radiometry::ColourLock lock = camera.colour_lock();
   if (lock.auto_exposure)
-    throw CaptureProblem(FixAt::kSetup,
-                         camera.description() + ": auto exposure is on (as the camera reports it); the camera would "
-                         "choose its own exposures and the sweep's would not be the ones recorded. Lock auto "
-                         "exposure and try again.");
+    throw CaptureProblem(FixAt::kSetup, Say(words::kAutoExposureOn, {camera.description()}));
   if (lock.auto_white_balance)
-    throw CaptureProblem(FixAt::kSetup,
-                         camera.description() + ": auto white balance is on (as the camera reports it); it would "
-                         "change the colour gains between exposures. Lock white balance and try again.");
+    throw CaptureProblem(FixAt::kSetup, Say(words::kAutoWhiteBalanceOn, {camera.description()}));
   // The exposure must act on the images: two stops apart, the mid-tones must brighten.
   const radiometry::ExposureLimits lim = camera.limits();
   double a = std::clamp(std::sqrt(lim.min_ms * lim.max_ms), lim.min_ms, lim.max_ms / 4);
@@ -150,13 +138,8 @@ void VerifyManualExposure(SweepCamera& camera) {
       continue;
     }
     if (sb.mean_green < sa.mean_green * 1.2 + 2) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, " (mean level %.1f at %s, %.1f at %s)", sa.mean_green, Ms(ta).c_str(),
-                    sb.mean_green, Ms(tb).c_str());
-      throw CaptureProblem(FixAt::kSetup,
-                           camera.description() + ": the images did not brighten when the exposure was set 2 stops "
-                           "longer" + buf + "; the camera is not taking the exposure it is given (automatic exposure "
-                           "still acting?). Lock auto exposure and try again.");
+      throw CaptureProblem(FixAt::kSetup, Say(words::kExposureIgnored, {camera.description(), Num(sa.mean_green, 1),
+                                                                        Sig(ta), Num(sb.mean_green, 1), Sig(tb)}));
     }
     return;
   }
@@ -211,12 +194,8 @@ SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const 
     plan.saturated_at_shortest = s.high;
     if (s.high > 0.5)
       throw CaptureProblem(FixAt::kSetup,
-                           camera.description() + ": even at the shortest exposure (" + Ms(lo) + ") " +
-                           Percent(s.high) + " of the image is saturated. Dim the lights, point the camera at a "
-                           "darker scene or lower its gain, then plan again.");
-    if (s.high > 0.005)
-      plan.warnings.push_back(Percent(s.high) + " of the image is saturated even at the shortest exposure (" + Ms(lo) +
-                              "): the brightest parts add nothing to the top of the curve");
+                           Say(words::kSaturatedAtShortest, {camera.description(), Sig(lo), Percent(s.high)}));
+    if (s.high > 0.005) plan.warnings.push_back(Say(words::kPlanSaturated, {Percent(s.high), Sig(lo)}));
   }
   // Longest: 90 % of the image saturated.
   double hi = options.max_ms > 0 ? camera.Quantise(options.max_ms) : 0;
@@ -234,21 +213,17 @@ SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const 
     plan.dark_at_longest = s.low;
     if (s.low > 0.5)
       throw CaptureProblem(FixAt::kSetup,
-                           camera.description() + ": even at the longest exposure (" + Ms(hi) + ") " + Percent(s.low) +
-                           " of the image is black. Light the scene, or point the camera at a brighter one, then "
-                           "plan again.");
+                           Say(words::kBlackAtLongest, {camera.description(), Sig(hi), Percent(s.low)}));
   }
-  if (Cancelled(cancel)) throw Error("planning cancelled");
+  if (Cancelled(cancel)) throw Error(Say(words::kPlanningCancelled));
   if (hi <= lo) hi = camera.Quantise(lo * std::pow(2.0, 4 * options.step_stops));
   // Exposures: `step` stops apart (wider when there would be too many), as the camera sets them.
   double step = options.step_stops;
   const double range_stops = std::log2(hi / lo);
   if (range_stops / step + 1 > options.max_exposures) {
     step = range_stops / (options.max_exposures - 1);
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "the scene spans %.1f stops: steps widened to %.2f stops to stay within %d exposures",
-                  range_stops, step, options.max_exposures);
-    plan.warnings.push_back(buf);
+    plan.warnings.push_back(
+        Say(words::kPlanStepsWidened, {Num(range_stops, 1), Num(step, 2), std::to_string(options.max_exposures)}));
   }
   const int n = int(std::ceil(range_stops / step - 1e-6)) + 1;
   for (int k = 0; k < n; ++k) {
@@ -256,15 +231,14 @@ SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const 
     if (plan.exposures_ms.empty() || t > plan.exposures_ms.back() * 1.0001) plan.exposures_ms.push_back(t);
   }
   if (plan.exposures_ms.size() < 3)
-    throw CaptureProblem(FixAt::kSetup, camera.description() + ": the camera's exposures (" + Ms(lo) + " to " + Ms(hi) +
-                                            ") give fewer than 3 distinct exposures; calibration needs 3 or more");
+    throw CaptureProblem(FixAt::kSetup, Say(words::kTooFewExposures, {camera.description(), Sig(lo), Sig(hi)}));
   // Preview: one frame per exposure; which levels do they cover?
   radiometry::Sweep preview;
   preview.source = camera.description() + " (preview sweep)";
   status.stage = "preview";
   status.steps = int(plan.exposures_ms.size());
   for (std::size_t k = 0; k < plan.exposures_ms.size(); ++k) {
-    if (Cancelled(cancel)) throw Error("planning cancelled");
+    if (Cancelled(cancel)) throw Error(Say(words::kPlanningCancelled));
     status.step = int(k);
     status.exposure_ms = Expose(camera, plan.exposures_ms[k], options.settle_frames);
     if (progress) progress(status);
@@ -275,18 +249,18 @@ SweepPlan PlanSweep(SweepCamera& camera, const SweepPlanOptions& options, const 
   const char* ch = "RGB";
   for (int c = 0; c < 3; ++c) {
     const double share = plan.coverage.share[std::size_t(c)];
-    std::string gap;
-    if (plan.coverage.gap_from[std::size_t(c)] <= plan.coverage.gap_to[std::size_t(c)])
-      gap = " (widest gap: levels " + std::to_string(plan.coverage.gap_from[std::size_t(c)]) + " to " +
-            std::to_string(plan.coverage.gap_to[std::size_t(c)]) + ")";
+    const bool gap = plan.coverage.gap_from[std::size_t(c)] <= plan.coverage.gap_to[std::size_t(c)];
+    const std::string from = std::to_string(plan.coverage.gap_from[std::size_t(c)]);
+    const std::string to = std::to_string(plan.coverage.gap_to[std::size_t(c)]);
+    const std::string channel(1, ch[c]);
     if (share < 0.5)
-      throw CaptureProblem(FixAt::kSetup, camera.description() + ": the planned sweep covers only " + Percent(share) +
-                                              " of the levels of channel " + ch[c] + gap +
-                                              ". Point the camera at a scene with dark and bright parts and many "
-                                              "shades between (not a wall or a grey card), then plan again.");
+      throw CaptureProblem(
+          FixAt::kSetup,
+          gap ? Say(words::kCoverageTooLowGap, {camera.description(), Percent(share), channel, from, to})
+              : Say(words::kCoverageTooLow, {camera.description(), Percent(share), channel}));
     if (share < 0.9)
-      plan.warnings.push_back("the planned sweep covers " + Percent(share) + " of the levels of channel " +
-                              std::string(1, ch[c]) + gap + ": the curve is interpolated there");
+      plan.warnings.push_back(gap ? Say(words::kPlanCoverageGap, {Percent(share), channel, from, to})
+                                  : Say(words::kPlanCoverage, {Percent(share), channel}));
   }
   return plan;
 }
@@ -388,7 +362,7 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
       if (attempt > 0) {
         ++record_.recaptures;
         status.recaptures = record_.recaptures;
-        status.note = "re-capturing " + Ms(exposures[std::size_t(k)]) + ": " + failure;
+        status.note = Say(words::kRecapturing, {Sig(exposures[std::size_t(k)]), failure});
       }
       actual = Expose(camera_, exposures[std::size_t(k)], o.settle_frames);
       status.exposure_ms = actual;
@@ -399,11 +373,10 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
       failure.clear();
       for (std::size_t r = 1; r < frames.size() && failure.empty(); ++r) {
         const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(frames[0], frames[r]);
-        if (m.moved()) failure = "the image changed between repeats (" + Percent(m.share) + " of image regions changed "
-                                 "brightness order): the camera or the scene moved";
+        if (m.moved()) failure = Say(words::kMovedBetweenRepeats, {Percent(m.share)});
         const double d = MeanChange(frames[0], frames[r]);
         if (failure.empty() && d > o.flicker_share)
-          failure = "the brightness changed by " + Percent(d) + " between repeats: flickering light";
+          failure = Say(words::kFlicker, {Percent(d)});
       }
       // Against the step before, and against the best-exposed step so far (a move during
       // dark steps, where few regions can be compared, is caught once the light returns).
@@ -411,8 +384,7 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
         if (!failure.empty() || !before) continue;
         const radiometry::OrderChange m = radiometry::CompareBrightnessOrder(*before, frames[0]);
         if (m.moved())
-          failure = "the image no longer matches the exposure before (" + Percent(m.share) +
-                    " of image regions changed brightness order): the camera or the scene moved";
+          failure = Say(words::kMovedSinceBefore, {Percent(m.share)});
       }
       if (failure.empty()) break;
     }
@@ -422,17 +394,16 @@ CaptureResult SweepCapture::Run(const CaptureProgress& progress, const std::atom
     }
     if (!failure.empty()) {
       WriteRecord(folder_, record_);
-      const bool across = failure.find("exposure before") != std::string::npos;
-      throw CaptureProblem(
-          FixAt::kCapture,
-          "At " + Ms(exposures[std::size_t(k)]) + " (step " + std::to_string(k + 1) + " of " +
-              std::to_string(result.steps) + ") " + failure + ", " + std::to_string(o.max_retries + 1) +
-              " times in a row. " +
-              (failure.find("flicker") != std::string::npos
-                   ? "Switch off fluorescent or dimmed LED lights (or use daylight), then resume."
-                   : across ? "The camera was moved: put it back exactly where it was, or start a new sweep."
-                            : "Put the camera on a tripod or a table and keep the scene still, then resume.") +
-              " The " + std::to_string(k) + " steps captured so far are kept in " + folder_.string() + ".");
+      const std::optional<ParsedMessage> what = ParseMessage(failure);
+      const Wording* kind = what ? what->wording : nullptr;
+      const Wording& advice = kind == &words::kFlicker            ? words::kAdviceFlicker
+                              : kind == &words::kMovedSinceBefore ? words::kAdviceMovedAcross
+                                                                  : words::kAdviceKeepStill;
+      throw CaptureProblem(FixAt::kCapture,
+                           Say(words::kCaptureFailed,
+                               {Sig(exposures[std::size_t(k)]), std::to_string(k + 1), std::to_string(result.steps),
+                                failure, std::to_string(o.max_retries + 1), Say(advice), std::to_string(k),
+                                folder_.string()}));
     }
     for (const ColorImage& f : frames) {
       writer->Add(t_next, f, nullptr, actual, std::nullopt, nullptr);

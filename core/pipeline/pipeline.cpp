@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "pipeline/backend.h"
 
 namespace hdrf::pipeline {
@@ -102,11 +103,6 @@ void Push(std::vector<double>& v, double x) {
 }
 bool UsesIcp(tracking::TrackerKind k) { return k == tracking::TrackerKind::kNrIcp || k == tracking::TrackerKind::kIcp; }
 double Clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
-std::string Fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
 }  // namespace
 
 double Pipeline::Median(std::vector<double> v) {
@@ -143,10 +139,8 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
     const double base = Median(hist);
     *ratio = base > 0 ? res / base : 0;
     if (!v.why.empty() || res <= floor || res <= growth * base) return;
-    v.why = icp ? "point-to-surface error " + Fixed(100 * res, 1) + " cm, " + Fixed(res / base, 1) +
-                      "x the scan's usual " + Fixed(100 * base, 1) + " cm"
-                : "radiance residual " + Fixed(res, 3) + ", " + Fixed(res / base, 1) + "x the scan's usual " +
-                      Fixed(base, 3);
+    v.why = icp ? Say(words::kIcpResidualHigh, {Num(100 * res, 1), Num(res / base, 1), Num(100 * base, 1)})
+                : Say(words::kPhotoResidualHigh, {Num(res, 3), Num(res / base, 1), Num(base, 3)});
   };
   ResidualRatios ratios;
   if (UsesIcp(t.kind)) check(icp_residuals_, r.rms_icp_m, t.verify_floor_m, true, &ratios.icp);
@@ -156,7 +150,7 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
   if (!v.why.empty()) return v;
   const double robust = UsesIcp(t.kind) ? r.icp_inliers : r.photo_inliers;
   if (robust < t.min_robust_inliers) {
-    v.why = "only " + std::to_string(int(100 * robust)) + " % of the matched pixels fit the pose";
+    v.why = Say(words::kFewPixelsFit, {std::to_string(int(100 * robust))});
     return v;
   }
   Backend& b = *backend_;
@@ -167,8 +161,7 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
       if (exposure_drifts_.size() >= kMinHistory) {
         const double usual = Median(exposure_drifts_);
         if (std::fabs(v.drift - usual) > std::log1p(double(t.max_exposure_drift)))
-          v.why = "the exposure the pose implies is " + Fixed(std::exp(v.drift - usual), 2) +
-                  "x the sensor's reported exposure (relative to the scan so far)";
+          v.why = Say(words::kExposureDisagrees, {Num(std::exp(v.drift - usual), 2)});
       }
     }
   }
@@ -224,9 +217,9 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   if (!anchored_ && rep.depth_share < o_.tracker.min_anchor_depth) {
     rep.state = FrameState::kWaiting;
     rep.tracking.lost = true;
-    rep.why = rep.tracking.why = "waiting for a frame to anchor the model: " + std::to_string(int(100 * rep.depth_share)) +
-                                 " % of its pixels have depth, " +
-                                 std::to_string(int(std::ceil(100 * o_.tracker.min_anchor_depth))) + " % needed";
+    rep.why = rep.tracking.why =
+        Say(words::kWaitingForAnchor, {std::to_string(int(100 * rep.depth_share)),
+                                       std::to_string(int(std::ceil(100 * o_.tracker.min_anchor_depth)))});
     rep.T_world_camera = pose_;
     rep.allocated_bricks = b.AllocatedBricks();
     ++index_;
@@ -357,8 +350,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       pose_ = r.T_world_camera;
       if (recovering_ && ++confirmed_ < o_.tracker.confirm_frames) {
         rep.state = rep.reloc_entry >= 0 ? FrameState::kRelocalised : FrameState::kConfirming;
-        rep.why = "confirming the pose after a loss (" + std::to_string(confirmed_) + " of " +
-                  std::to_string(o_.tracker.confirm_frames) + " frames)";
+        rep.why = Say(words::kConfirmingPose,
+                      {std::to_string(confirmed_), std::to_string(o_.tracker.confirm_frames)});
       } else {
         rep.state = rep.reloc_entry >= 0 ? FrameState::kRelocalised : FrameState::kTracked;
         recovering_ = false;

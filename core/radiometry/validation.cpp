@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "radiometry/calibration_detail.h"
 
 namespace hdrf::radiometry {
@@ -22,12 +23,6 @@ std::string Ms(double v) {
   return os.str();
 }
 
-std::string Stops(double v) {
-  std::ostringstream os;
-  os.precision(2);
-  os << std::fixed << v << " stops";
-  return os.str();
-}
 
 }  // namespace
 
@@ -146,13 +141,14 @@ CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inv
       if (!worst || c.median_abs_stops > worst->median_abs_stops) worst = &c;
     }
     if (worst && worst->median_abs_stops > lim.good_stops) {
-      std::ostringstream os;
-      os << (over_redo ? over_redo : over_good) << " of " << judged << " exposures disagree with the merge by more than "
-         << Stops(over_redo ? lim.redo_stops : lim.good_stops) << " (worst " << Stops(worst->median_abs_stops) << " at "
-         << Ms(worst->exposure_ms) << ")"
-         << (over_redo ? ": the exposure times do not match the images, or the scene changed"
-                       : "; good is below " + Stops(lim.good_stops));
-      grade(over_redo ? Verdict::kRedo : Verdict::kMarginal, os.str());
+      const std::string worst_stops = Num(worst->median_abs_stops, 2), at = Sig(worst->exposure_ms);
+      if (over_redo)
+        grade(Verdict::kRedo, Say(words::kExposuresDisagreeRedo, {std::to_string(over_redo), std::to_string(judged),
+                                                                  Num(lim.redo_stops, 2), worst_stops, at}));
+      else
+        grade(Verdict::kMarginal,
+              Say(words::kExposuresDisagree, {std::to_string(over_good), std::to_string(judged), Num(lim.good_stops, 2),
+                                              worst_stops, at, Num(lim.good_stops, 2)}));
     }
   }
   // The middle exposure held back: fitted without it, predicted from the others.
@@ -172,44 +168,37 @@ CalibrationCheck CheckCalibration(const Sweep& sweep, const InverseResponse& inv
     if (!c.empty()) out.held_out = c.front();
     out.held_out.exposure_ms = held;
     if (out.held_out.samples < 100)
-      grade(Verdict::kMarginal, "too few well-exposed pixels at " + Ms(held) + " to check the fit on a held-back exposure");
+      grade(Verdict::kMarginal, Say(words::kHeldBackFewPixels, {Sig(held)}));
     else if (out.held_out.median_abs_stops > lim.redo_stops)
-      grade(Verdict::kRedo, "the " + Ms(held) + " exposure, held back, is predicted from the others only within " +
-                                Stops(out.held_out.median_abs_stops) + " (limit " + Stops(lim.redo_stops) +
-                                "): the response does not hold between exposures");
+      grade(Verdict::kRedo, Say(words::kHeldBackRedo,
+                                {Sig(held), Num(out.held_out.median_abs_stops, 2), Num(lim.redo_stops, 2)}));
     else if (out.held_out.median_abs_stops > lim.good_stops)
-      grade(Verdict::kMarginal, "the " + Ms(held) + " exposure, held back, is predicted within " +
-                                    Stops(out.held_out.median_abs_stops) + " (good below " + Stops(lim.good_stops) + ")");
+      grade(Verdict::kMarginal, Say(words::kHeldBackMarginal,
+                                    {Sig(held), Num(out.held_out.median_abs_stops, 2), Num(lim.good_stops, 2)}));
   } catch (const Error& err) {
     out.held_out.exposure_ms = held;
-    grade(Verdict::kRedo, std::string("the fit without the ") + Ms(held) + " exposure failed: " + err.what());
+    grade(Verdict::kRedo, Say(words::kHeldBackFailed, {Sig(held), err.what()}));
   }
   // Levels the scene leaves uncovered: the curve is interpolated there.
   out.coverage = MeasureLevelCoverage(sweep);
   for (int c = 0; c < 3; ++c)
     if (out.coverage.share[c] < 0.9) {
-      std::ostringstream os;
-      os << int(100 * out.coverage.share[c]) << " % of the " << "RGB"[c]
-         << " levels are covered (levels " << out.coverage.gap_from[c] << " to " << out.coverage.gap_to[c]
-         << " not seen): the curve is interpolated there; a scene with more distinct brightnesses covers them";
-      grade(Verdict::kMarginal, os.str());
+      grade(Verdict::kMarginal, Say(words::kLevelsUncovered, {std::to_string(int(100 * out.coverage.share[c])),
+                                                              std::string(1, "RGB"[c]),
+                                                              std::to_string(out.coverage.gap_from[c]),
+                                                              std::to_string(out.coverage.gap_to[c])}));
     }
   // Steps between exposures.
   double step = 0;
   for (std::size_t k = 1; k < e.size(); ++k) step = std::max(step, std::log2(e[k] / e[k - 1]));
   if (step > lim.max_step_stops)
-    grade(Verdict::kMarginal, "exposures up to " + Stops(step) +
-                                  " apart; steps of a stop or less pin the curve down near saturation");
+    grade(Verdict::kMarginal, Say(words::kStepsTooWide, {Num(step, 2)}));
   // The noise fit.
   if (noise_misfit) {
     const double worst = std::max({(*noise_misfit)[0], (*noise_misfit)[1], (*noise_misfit)[2]});
     if (!(worst <= lim.noise_misfit)) {
       out.noise_usable = false;
-      std::ostringstream os;
-      os.precision(3);
-      os << "the noise level function does not fit the measured noise (rms relative misfit " << worst << ", limit "
-         << lim.noise_misfit << "): it is not saved";
-      grade(Verdict::kMarginal, os.str());
+      grade(Verdict::kMarginal, Say(words::kNoiseMisfit, {Sig(worst, 3), Sig(lim.noise_misfit, 3)}));
     }
   }
   return out;

@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "common/message.h"
 #include "io/input_file.h"
 #include "io/image_io.h"
 #include "io/sensor_json.h"
@@ -90,8 +91,7 @@ LiveFrameSource::LiveFrameSource(LiveOptions options) : options_(std::move(optio
   camera_ = OpenNiCamera::Open(options_.device, options_.mode);
   profile_ = ProfileFor(camera_->entry(), options_.mode);
   if (!camera_->depth_registered_by_device())
-    profile_.sensor.warnings.push_back("device '" + camera_->entry().name +
-                                       "' cannot register depth to colour: depth is used as delivered");
+    profile_.sensor.warnings.push_back(Say(words::kNoDepthRegistration, {camera_->entry().name}));
   ApplyExposure(options_);
 }
 
@@ -205,7 +205,7 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
     m.sensor = io::ReadSensorJson(sensor_file);
   } else {
     m.sensor = sim::BuiltinXtionProfile();
-    m.sensor.warnings.push_back(sensor_file.string() + " is missing: the built-in Asus Xtion profile is assumed");
+    m.sensor.warnings.push_back(Say(words::kRecordingProfileMissing, {sensor_file.string()}));
   }
   m.sensor.depth_scale = 1000.0;
   const fs::path exposure_file = file.string() + ".exposure.txt";
@@ -224,7 +224,7 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
       m.exposures[key] = {ms, gain};
     }
   } else {
-    m.sensor.warnings.push_back(exposure_file.string() + " is missing: every frame is of unknown exposure");
+    m.sensor.warnings.push_back(Say(words::kRecordingExposuresMissing, {exposure_file.string()}));
   }
   EnsureOpenNi();
   const std::string who = file.string();

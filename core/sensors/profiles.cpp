@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "common/message.h"
 #include "io/sensor_json.h"
 #include "sim/builtin_sensor.h"
 
@@ -35,12 +36,11 @@ Profile ProfileFor(const DeviceEntry& device, CaptureMode mode) {
   } else {
     p.sensor = sim::BuiltinXtionProfile();
     p.sensor.synthetic.reset();
+    const std::string stores = file.empty() ? ProfileFolder().string() + "/<serial>.json" : file.string();
     p.sensor.warnings.push_back(
-        "no profile for device '" + device.name + "'" + (device.serial.empty() ? "" : " (serial " + device.serial + ")") +
-        " in " + ProfileFolder().string() + ": using the built-in Asus Xtion profile. Its response and "
-        "intrinsics are not this device's own; calibrate it with hdrfusion-calibration-wizard (or "
-        "hdrfusion capture-sweep, then hdrfusion calibrate --save-profile), which stores " +
-        (file.empty() ? ProfileFolder().string() + "/<serial>.json" : file.string()) + ")");
+        device.serial.empty()
+            ? Say(words::kNoProfile, {device.name, ProfileFolder().string(), stores})
+            : Say(words::kNoProfileSerial, {device.name, device.serial, ProfileFolder().string(), stores}));
   }
   // Scale the camera to the capture mode (the same sensor binned or cropped to another size
   // keeps its aspect; anything else is refused rather than guessed).
@@ -61,9 +61,7 @@ Profile ProfileFor(const DeviceEntry& device, CaptureMode mode) {
   }
   p.sensor.depth_scale = 1000.0;  // OpenNI2 depth in millimetres
   if (!p.sensor.device || !p.sensor.device->exposure_ms_per_unit)
-    p.sensor.warnings.push_back("the profile gives no exposure unit for this device "
-                                "('hdrfusion.device.exposure_ms_per_unit'): frames are recorded as of unknown "
-                                "exposure and the engine estimates exposure ratios itself");
+    p.sensor.warnings.push_back(Say(words::kNoExposureUnit));
   if (!p.sensor.device) p.sensor.device = SensorInfo::Device{device.serial, device.name, std::nullopt};
   return p;
 }

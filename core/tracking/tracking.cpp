@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "imaging/imaging.h"
 #include "tracking/pyramid_driver.h"
 
@@ -238,17 +239,17 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
   const Pose delta = initial.inverse() * T;
   if (res.iterations == 0 || matched < 50) {
     res.lost = true;
-    res.why = "no correspondences";
+    res.why = Say(words::kNoCorrespondences);
   } else if (res.inlier_share < o.min_inlier_share) {
     res.lost = true;
-    res.why = "only " + std::to_string(int(100 * res.inlier_share)) + " % of pixels matched";
+    res.why = Say(words::kFewPixelsMatched, {std::to_string(int(100 * res.inlier_share))});
   } else if (res.condition > o.max_condition) {
     res.lost = true;
-    res.why = "ill-conditioned (geometry and texture too poor)";
+    res.why = Say(words::kIllConditioned);
   } else if (se3::TranslationNorm(delta) > o.max_jump_m ||
              se3::RotationAngle(delta) > o.max_jump_deg * 3.14159265 / 180.0) {
     res.lost = true;
-    res.why = "pose jumped implausibly far";
+    res.why = Say(words::kPoseJumped);
   }
   return res;
 }

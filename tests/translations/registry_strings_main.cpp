@@ -1,11 +1,12 @@
-// Prints gui/registry_strings.cpp: the words of the engine's settings registry and of the
-// tone-mapping operators' declarations, as QT_TRANSLATE_NOOP entries for Qt Linguist's
+// Prints gui/registry_strings.cpp: the words of the engine's settings registry, of the
+// tone-mapping operators' declarations and the engine's message wordings, as QT_TRANSLATE_NOOP entries for Qt Linguist's
 // lupdate (the core does not use Qt, so lupdate cannot find them in the core's sources).
 // tools/update_translations.sh writes the file with it; a test fails when the file is stale.
 #include <cstdio>
 #include <set>
 #include <string>
 
+#include "common/message.h"
 #include "pipeline/settings.h"
 #include "tonemap/operator.h"
 
@@ -32,7 +33,8 @@ void List(const char* context, const char* array, const std::vector<std::string>
 }  // namespace
 
 int main() {
-  std::vector<std::string> settings, tone;
+  std::vector<std::string> settings, tone, engine;
+  for (const hdrf::Wording* w : hdrf::AllWordings()) engine.push_back(w->english);
   for (const auto& s : hdrf::pipeline::Settings()) {
     settings.push_back(s.label);
     settings.push_back(s.help);
@@ -48,12 +50,15 @@ int main() {
     for (const auto& p : d.presets) tone.push_back(p.label);
   }
   std::printf(
-      "// Written by tools/update_translations.sh from the engine's settings registry and the\n"
-      "// tone-mapping operators' declarations (tests/translations/registry_strings_main.cpp): their\n"
-      "// words, listed for Qt Linguist's lupdate. Not compiled; do not edit.\n"
+      "// Written by tools/update_translations.sh from the engine's settings registry, the\n"
+      "// tone-mapping operators' declarations and the engine's message wordings\n"
+      "// (tests/translations/registry_strings_main.cpp): their words, listed for Qt Linguist's\n"
+      "// lupdate. Not compiled; do not edit.\n"
       "#include <QtGlobal>\n\n");
   List("Settings", "kSettingWords", settings);
   std::printf("\n");
   List("ToneMapping", "kToneMappingWords", tone);
+  std::printf("\n");
+  List("Engine", "kEngineWords", engine);
   return 0;
 }

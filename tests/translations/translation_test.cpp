@@ -36,6 +36,7 @@
 
 #include "calibration_wizard/calibration_wizard.h"
 #include "calibration_wizard/translation.h"
+#include "common/message.h"
 #include "gui/main_window.h"
 #include "gui/registry_words.h"
 #include "gui/vtk_view.h"
@@ -151,6 +152,40 @@ TEST(Translations, EverySettingAndOperatorWordHasAGermanTranslation) {
     for (const auto& p : d.presets) check("ToneMapping", p.label);
   }
   EXPECT_GT(checked, 150);
+}
+
+QStringList EnglishWords(const QString& shown);
+
+// The engine's messages of normal operation (common/message.h) are shown in German: every
+// wording translated with no English left, numbers in German notation, a message within a
+// message translated too; anything else (an error naming a file) quoted as written.
+TEST(Translations, EngineMessagesAreShownInGerman) {
+  for (const Wording* w : AllWordings()) {
+    const QString t = QCoreApplication::translate("Engine", w->english);
+    EXPECT_NE(t, QString::fromUtf8(w->english)) << "untranslated: " << w->name;
+    const QStringList english = EnglishWords(t);
+    EXPECT_TRUE(english.isEmpty()) << w->name << ": English (" << english.join(QStringLiteral(", ")).toStdString()
+                                   << ") in " << t.toStdString();
+  }
+  // Numbers: decimal commas, units kept.
+  const std::string residual = Say(words::kIcpResidualHigh, {Num(3.14159, 1), Num(2.5, 1), Num(0.75, 2)});
+  EXPECT_EQ(wizard::EngineText(residual),
+            QStringLiteral("Punkt-zu-Fläche-Fehler 3,1 cm, 2,5-mal so groß wie die für diesen Scan üblichen 0,75 cm"));
+  EXPECT_EQ(wizard::EngineText(Say(words::kConfirmingPose, {"1", "3"})),
+            QStringLiteral("bestätige die Pose nach einem Verlust (1 von 3 Bildern)"));
+  // A failed capture step: the failure and the advice are messages themselves; the folder
+  // (holding "%2" and ": ") is kept as it is.
+  const std::string failure = Say(words::kFlicker, {"12"});
+  const std::string capture = Say(words::kCaptureFailed, {Sig(12.5), "4", "9", failure, "3", Say(words::kAdviceFlicker),
+                                                          "3", "/tmp/sweep %2: x"});
+  const QString shown = wizard::EngineText(capture);
+  EXPECT_EQ(shown, QStringLiteral("Bei 12,5 ms (Schritt 4 von 9): die Helligkeit änderte sich zwischen den "
+                                  "Wiederholungen um 12 %: flackerndes Licht, 3-mal in Folge. Leuchtstofflampen "
+                                  "oder gedimmte LED-Lampen ausschalten (oder Tageslicht nutzen), dann fortsetzen. "
+                                  "Die 3 bisher aufgenommenen Schritte bleiben in /tmp/sweep %2: x erhalten."));
+  // Not one of the engine's wordings: quoted as the engine wrote it, control characters escaped.
+  EXPECT_EQ(wizard::EngineText(std::string("/data/seq/rgb.txt:3: expected 'timestamp filename'\x1b")),
+            QStringLiteral("„/data/seq/rgb.txt:3: expected 'timestamp filename'\\x1b“"));
 }
 
 // ---- What a German user sees ----
