@@ -1,6 +1,7 @@
 #include "calibration_wizard/plot_widget.h"
 
 #include <QImage>
+#include <QLocale>
 #include <QPainter>
 #include <QPainterPath>
 #include <algorithm>
@@ -23,8 +24,8 @@ std::vector<double> NiceTicks(double lo, double hi, int n) {
 
 QString Label(double v) {
   const double a = std::abs(v);
-  if (a != 0 && (a < 1e-3 || a >= 1e5)) return QString::number(v, 'g', 2);
-  return QString::number(v, 'g', 4);
+  if (a != 0 && (a < 1e-3 || a >= 1e5)) return QLocale().toString(v, 'g', 2);
+  return QLocale().toString(v, 'g', 4);
 }
 
 }  // namespace
