@@ -1211,6 +1211,22 @@
         <source>Radiance scaled and clipped at white: what was measured, clipping included.</source>
         <translation>Radianz skaliert und bei Weiß abgeschnitten: was gemessen wurde, Übersteuerung eingeschlossen.</translation>
     </message>
+    <message>
+        <source>Brightness hold</source>
+        <translation>Helligkeit halten</translation>
+    </message>
+    <message>
+        <source>For video: up to this many stops, the time filter holds the view&apos;s mean brightness steady while the camera turns to brighter or darker surfaces, and lets it adapt at the pace below. 0 turns it off.</source>
+        <translation>Für Video: Bis zu so vielen Blendenstufen hält der Zeitfilter die mittlere Helligkeit der Ansicht ruhig, während sich die Kamera helleren oder dunkleren Flächen zuwendet, und lässt sie sich im unten eingestellten Tempo anpassen. 0 schaltet es aus.</translation>
+    </message>
+    <message>
+        <source>Brightness adaptation</source>
+        <translation>Helligkeitsanpassung</translation>
+    </message>
+    <message>
+        <source>Cut-off frequency of the held brightness: at 0.1 Hz the view adapts to what is in view over about three seconds.</source>
+        <translation>Grenzfrequenz der gehaltenen Helligkeit: Bei 0,1 Hz passt sich die Ansicht in etwa drei Sekunden an das an, was im Bild ist.</translation>
+    </message>
 </context>
 <context>
     <name>hdrf::EngineText</name>

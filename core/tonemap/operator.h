@@ -68,7 +68,9 @@ class Operator {
   // data.
   virtual void Map(const RadianceImage& in, Image<Float3>& out, FrameTime t) = 0;
   // The same mapping for a list of colours (mesh vertices). A global operator applies the
-  // curve of the last image it mapped; with none yet, the list is mapped on its own.
+  // curve of the last image it mapped (mantiuk08: without its brightness hold, which steadies
+  // a view whose content changes, not a whole model); with none yet, the list is mapped on
+  // its own.
   virtual std::vector<Float3> MapList(const std::vector<Float3>& in);
   // The tone curve of the last Map, where the operator has one: log10 input luminance
   // against display-linear luminance. Empty otherwise.

@@ -16,6 +16,7 @@
 #include <QTest>
 #include <QThread>
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 
@@ -124,47 +125,66 @@ TEST(TonePanel, IsGeneratedFromTheDeclarations) {
   EXPECT_GE(emitted, 4);
 }
 
-// Temporal stability as the studio shows it: a 300-frame scan of the synthetic room under
-// flickering auto exposure, the model view (the fused model's ray cast) tone-mapped with
-// mantiuk08 at each frame's time. With the time filter both the tone curve and the
-// displayed mean log luminance change less from frame to frame (measured: 0.48 and 0.60 of
-// the unfiltered change). The goal of a quarter is not met, and on this measure cannot be
-// by any filter of the curve: with one curve held fixed for the whole scan, the content
-// alone changes the view by 0.56 of the unfiltered change -- see docs/tonemapping.md.
-TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
+// Temporal stability as the studio shows it: a 300-frame scan of a synthetic scene, the
+// model view (the fused model's ray cast) tone-mapped with mantiuk08 at each frame's time,
+// with its time filter (the curve's low-pass and the brightness hold) and without. Measured:
+// the frame-to-frame change of the displayed mean log10 luminance (what the display emits:
+// the 8-bit pixels' sRGB encoding undone, through the default LCD display model); the goal
+// is at most a quarter of the unfiltered change. One mantiuk08 curve held fixed for the
+// whole scan (fitted to the middle frame) shows how much the content alone changes the view.
+// The room under flicker is the goal's sequence; the desk and the room's smooth auto
+// exposure (another path and seed) show the filter is not made for it.
+struct TemporalCase {
+  const char* name;
+  const char* scene;
+  sim::AeMode ae;
+  std::uint32_t seed;
+};
+
+class ModelViewStability : public ::testing::TestWithParam<TemporalCase> {};
+
+TEST_P(ModelViewStability, Mantiuk08TimeFilterQuartersTheChangeOfTheShownBrightness) {
+  const TemporalCase& tc = GetParam();
   sim::SimOptions so;
+  so.scene = tc.scene;
+  so.seed = tc.seed;
   so.frames = 300;
   so.width = 160, so.height = 120;
-  so.ae.mode = sim::AeMode::kFlicker;
+  so.ae.mode = tc.ae;
   sim::SyntheticSource src(so);
   pipeline::PipelineOptions po;
   po.volume.voxel_m = 0.047f;
   pipeline::ScanSession session(po, sim::SimCamera(160, 120), src.sensor());
   ToneMapper filtered, unfiltered, fixed;
-  filtered.Set({"mantiuk08", {{"temporal", 1}}});
+  filtered.Set({"mantiuk08", {{"temporal", 1}}});  // the defaults: curve filter and brightness hold
   unfiltered.Set({"mantiuk08", {{"temporal", 0}}});
-  auto mean_log = [](const QImage& img, const RadianceImage& r) {
+  // The luminance the display shows for an 8-bit pixel: the sRGB display encoding undone,
+  // then the default display model (LCD: 200 cd/m² peak, 0.8 black, 60 lux at 1 %).
+  auto shown_log_lum = [](int r8, int g8, int b8) {
+    auto lin = [](int c) {
+      const double v = c / 255.0;
+      return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    };
+    const double y = 0.2126 * lin(r8) + 0.7152 * lin(g8) + 0.0722 * lin(b8);
+    return std::log10(y * (200 - 0.8) + 0.8 + 0.01 / std::numbers::pi * 60);
+  };
+  auto mean_log = [&](const QImage& img, const RadianceImage& r) {
     double s = 0;
     int n = 0;
     for (int y = 0; y < img.height(); ++y)
       for (int x = 0; x < img.width(); ++x) {
         const QRgb c = img.pixel(x, y);
         if (Luminance(r(x, y)) <= 0) continue;  // no model there
-        s += std::log10((0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c) + 1) / 256.0);
+        s += shown_log_lum(qRed(c), qGreen(c), qBlue(c));
         ++n;
       }
     return n ? s / n : 0.0;
   };
-  double change_f = 0, change_u = 0, change_c = 0, prev_f = 0, prev_u = 0, prev_c = 0;
-  double curve_f = 0, curve_u = 0, mesh_f = 0, mesh_u = 0, prev_mf = 0, prev_mu = 0;
-  int mesh_counted = 0;
-  std::vector<Float3> model;  // the model's vertex radiance after 30 frames: a fixed set to colour
-  auto mean_log_colours = [](const std::vector<Rgb8>& c) {
+  auto mean_log_colours = [&](const std::vector<Rgb8>& c) {
     double s = 0;
-    for (const Rgb8& v : c) s += std::log10((0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b + 1) / 256.0);
+    for (const Rgb8& v : c) s += shown_log_lum(v.r, v.g, v.b);
     return c.empty() ? 0.0 : s / double(c.size());
   };
-  std::vector<double> last_f, last_u;
   // Mean |change| of the display-linear curve over the nodes the view's luminance spans.
   auto curve_change = [](const std::vector<double>& now, const std::vector<double>& before) {
     double s = 0;
@@ -173,9 +193,7 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
       if (now[i] > 0.001 && now[i] < 0.999) s += std::abs(now[i] - before[i]), ++n;
     return n ? s / n : 0.0;
   };
-  int counted = 0;
-  // The scan first (the renders kept), so that one fixed mantiuk08 curve -- fitted to the
-  // middle frame's render -- can show how much the content alone changes the view.
+  // The scan first (the renders kept), so that the fixed curve can be fitted to the middle one.
   struct Shown {
     sim::SimFrame f;
     RadianceImage render;
@@ -192,13 +210,17 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
   fixed.Set({"mantiuk08", {{"temporal", 0}}});
   fixed.Map(frames[frames.size() / 2].render, ToneView::kModel);  // fits the one curve
   auto mean_log_fixed = [&](const RadianceImage& r) {
-    std::vector<Float3> px(r.data(), r.data() + r.size()), valid;
-    for (const Float3& c : px)
-      if (Luminance(c) > 0) valid.push_back(c);
-    double s = 0;
-    for (const Rgb8& v : fixed.MapColours(valid)) s += std::log10((0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b + 1) / 256.0);
-    return valid.empty() ? 0.0 : s / double(valid.size());
+    std::vector<Float3> valid;
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (Luminance(r[i]) > 0) valid.push_back(r[i]);
+    return mean_log_colours(fixed.MapColours(valid));
   };
+  double change_f = 0, change_u = 0, change_c = 0, prev_f = 0, prev_u = 0, prev_c = 0;
+  double curve_f = 0, curve_u = 0, mesh_f = 0, mesh_u = 0, prev_mf = 0, prev_mu = 0;
+  double drift_f = 0, drift_u = 0;  // largest distance of the shown mean from the unfiltered one
+  int counted = 0, mesh_counted = 0;
+  std::vector<Float3> model;  // a fixed set of vertices, coloured as the 3-D view colours them
+  std::vector<double> last_f, last_u;
   for (const Shown& s : frames) {
     const sim::SimFrame& f = s.f;
     if (s.render.empty()) continue;
@@ -214,26 +236,40 @@ TEST(ToneMapper, Mantiuk08TimeFilterSteadiesTheModelView) {
     }
     if (f.index >= 2) {
       change_f += std::abs(mf - prev_f), change_u += std::abs(mu - prev_u), change_c += std::abs(mc - prev_c), ++counted;
-
       curve_f += curve_change(cf, last_f), curve_u += curve_change(cu, last_u);
+      drift_f = std::max(drift_f, std::abs(mf - mu));
     }
+    drift_u = std::max(drift_u, std::abs(mu - mc));
     prev_f = mf, prev_u = mu, prev_c = mc;
     last_f = cf, last_u = cu;
   }
   ASSERT_GT(counted, 250);
-  std::printf("mean |frame-to-frame change| of the model view's mean log10 luminance: %.5f filtered, %.5f unfiltered "
-              "(ratio %.3f); %.5f with one fixed mantiuk08 curve (the content's own change)\n",
-              change_f / counted, change_u / counted, change_f / std::max(1e-12, change_u), change_c / counted);
-  std::printf("mean |frame-to-frame change| of the tone curve: %.5f filtered, %.5f unfiltered (ratio %.3f)\n",
-              curve_f / counted, curve_u / counted, curve_f / std::max(1e-12, curve_u));
-  std::printf("mean |frame-to-frame change| of the model's mean log10 luminance as coloured (fixed vertices): %.5f filtered, "
-              "%.5f unfiltered (ratio %.3f)\n",
-              mesh_f / mesh_counted, mesh_u / mesh_counted, mesh_f / std::max(1e-12, mesh_u));
-  EXPECT_GT(curve_u, 0);
-  EXPECT_LE(curve_f, 0.6 * curve_u);
-  EXPECT_LE(change_f, 0.75 * change_u);
-  EXPECT_LE(change_f, 1.2 * change_c);  // close to what the content alone does
+  std::printf("%s: mean |frame-to-frame change| of the shown mean log10 luminance: %.5f filtered, %.5f unfiltered "
+              "(ratio %.3f); %.5f with one fixed curve (the content's own change, ratio %.3f); filtered at most %.3f "
+              "from unfiltered\n",
+              tc.name, change_f / counted, change_u / counted, change_f / std::max(1e-12, change_u), change_c / counted,
+              change_c / std::max(1e-12, change_u), drift_f);
+  std::printf("%s: mean |frame-to-frame change| of the tone curve (display-linear): %.5f filtered, %.5f unfiltered "
+              "(ratio %.3f)\n",
+              tc.name, curve_f / counted, curve_u / counted, curve_f / std::max(1e-12, curve_u));
+  std::printf("%s: mean |frame-to-frame change| of fixed vertices' shown mean log10 luminance (the 3-D view): %.5f "
+              "filtered, %.5f unfiltered (ratio %.3f)\n",
+              tc.name, mesh_f / mesh_counted, mesh_u / mesh_counted, mesh_f / std::max(1e-12, mesh_u));
+  EXPECT_GT(change_u, 0);
+  // The goal on flicker scans; the smooth auto exposure's view changes brightness more
+  // slowly and further (beyond what the hold keeps), and is held to halving it.
+  EXPECT_LE(change_f, (tc.ae == sim::AeMode::kFlicker ? 0.25 : 0.5) * change_u);
+  EXPECT_LE(mesh_f, 0.8 * mesh_u);  // the 3-D view's colours (no hold there) steadier too
+  // The hold keeps the view within two stops of display luminance of what the frame's own
+  // (lagging) curve shows.
+  EXPECT_LE(drift_f, 2 * std::log10(2.0) + 0.15);
 }
+
+INSTANTIATE_TEST_SUITE_P(Scans, ModelViewStability,
+                         ::testing::Values(TemporalCase{"room_flicker", "room", sim::AeMode::kFlicker, 1},
+                                           TemporalCase{"desk_flicker", "desk", sim::AeMode::kFlicker, 3},
+                                           TemporalCase{"room_smooth", "room", sim::AeMode::kSmooth, 2}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // Both Mantiuk operators on a fused model: a short scan of the synthetic room, the model's
 // ray cast shown through each with the panel beside it. The two looks differ (mantiuk06

@@ -27,6 +27,8 @@ void Options::Check() const {
   if (!(contrast > 0)) throw SettingError("contrast", "the contrast enhancement must be positive");
   if (!(saturation >= 0 && saturation <= 2)) throw SettingError("saturation", "the saturation must be within [0, 2]");
   if (!(temporal_cutoff > 0)) throw SettingError("temporal_hz", "the cut-off must be positive");
+  if (!(hold_stops >= 0 && hold_stops <= 4)) throw SettingError("hold", "the brightness hold must be within [0, 4] stops");
+  if (!(hold_cutoff > 0)) throw SettingError("hold_hz", "the brightness adaptation's cut-off must be positive");
 }
 
 int BandCount(double ppd) {
@@ -435,6 +437,59 @@ ToneCurve CurveFilter::Update(const ToneCurve& curve, double t, double cutoff_hz
     stage2_[std::size_t(i)] += a * (stage1_[std::size_t(i)] - stage2_[std::size_t(i)]);
     out[std::size_t(i)] = std::clamp(stage2_[std::size_t(i)], y_min, y_max);
   }
+  return out;
+}
+
+std::array<double, kNodes> PixelHistogram(const Density& d) {
+  std::array<double, kNodes> h{};
+  if (d.bands == 0) return h;
+  for (int node = 0; node < kNodes; ++node)
+    for (int g = 0; g < kContrastBins; ++g) {
+      const int own = std::clamp(node + g - kZeroBin, 0, kNodes - 1);
+      h[std::size_t(own)] += d.at(0, node, g);
+    }
+  return h;
+}
+
+ToneCurve BrightnessHold::Update(const ToneCurve& curve, const std::array<double, kNodes>& pixels, double t,
+                                 double cutoff_hz, double max_shift, double y_min, double y_max) {
+  double total = 0, mean = 0;
+  for (int i = 0; i < kNodes; ++i) total += pixels[std::size_t(i)], mean += pixels[std::size_t(i)] * curve[std::size_t(i)];
+  shift_ = 0;
+  if (t < 0) started_ = false;  // a still ends the hold
+  if (t < 0 || total <= 0 || !(max_shift > 0)) return curve;  // an empty frame keeps it
+  mean /= total;
+  if (!started_ || t < last_t_) {
+    stage1_ = stage2_ = mean;
+    started_ = true;
+    last_t_ = t;
+    return curve;
+  }
+  const double a = 1 - std::exp(-2 * std::numbers::pi * cutoff_hz * (t - last_t_));
+  last_t_ = t;
+  stage1_ += a * (mean - stage1_);
+  stage2_ += a * (stage1_ - stage2_);
+  // The shift whose clamped curve has the held mean: the clamped mean grows monotonically
+  // with the shift, so bisection within the allowed range finds it (or the range's end).
+  auto shown = [&](double s) {
+    double m = 0;
+    for (int i = 0; i < kNodes; ++i) m += pixels[std::size_t(i)] * std::clamp(curve[std::size_t(i)] + s, y_min, y_max);
+    return m / total;
+  };
+  double lo = -max_shift, hi = max_shift;
+  if (shown(lo) >= stage2_) {
+    hi = lo;
+  } else if (shown(hi) <= stage2_) {
+    lo = hi;
+  } else {
+    for (int k = 0; k < 40; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (shown(mid) < stage2_ ? lo : hi) = mid;
+    }
+  }
+  shift_ = 0.5 * (lo + hi);
+  ToneCurve out{};
+  for (int i = 0; i < kNodes; ++i) out[std::size_t(i)] = std::clamp(curve[std::size_t(i)] + shift_, y_min, y_max);
   return out;
 }
 

@@ -39,6 +39,8 @@ struct Options {
   bool contrast_masking = true, luminance_masking = true, csf = true;  // vision model parts
   bool temporal = true;          // low-pass the curve over time (video only)
   double temporal_cutoff = 0.5;  // Hz
+  double hold_stops = 2;         // video: largest shift that holds the mean brightness steady (0 = off)
+  double hold_cutoff = 0.1;      // Hz: the pace at which the held brightness follows the view
   void Check() const;
 };
 
@@ -92,6 +94,29 @@ class CurveFilter {
   bool started_ = false;
   double last_t_ = 0;
   ToneCurve stage1_{}, stage2_{};
+};
+
+// Pixels per node of their own log luminance (background node plus contrast bin of the
+// finest band), the weights of a view's mean displayed level.
+std::array<double, kNodes> PixelHistogram(const Density& d);
+
+// Holds the view's mean displayed level steady while what is in view changes: the curve is
+// shifted up or down (by at most `max_shift` log10 units, clamped to the display range) so
+// that its mean over the frame's pixels follows a low-pass (two one-pole stages, cut-off
+// `cutoff_hz`, slower than the curve filter's) of the mean the unshifted curve gives. The shape of the
+// curve, and so the contrast within the frame, is the curve's own; a pan from bright to dark
+// surfaces brightens the view gradually, as eyes adapt, instead of at once.
+class BrightnessHold {
+ public:
+  // `t` < 0 (a still) resets the hold and returns `curve` unchanged.
+  ToneCurve Update(const ToneCurve& curve, const std::array<double, kNodes>& pixels, double t, double cutoff_hz,
+                   double max_shift, double y_min, double y_max);
+  void Reset() { started_ = false; }
+  double shift() const { return shift_; }  // of the last frame, log10 units
+
+ private:
+  bool started_ = false;
+  double last_t_ = 0, stage1_ = 0, stage2_ = 0, shift_ = 0;
 };
 
 // The GPU path (CUDA builds; elsewhere every call throws saying the build has no CUDA

@@ -43,8 +43,15 @@ class Mantiuk08 final : public Operator {
       y.fill(std::log10(o_.display.Offset() + 0.18 * (o_.display.peak - o_.display.black)));
     }
     const double y_min = std::log10(o_.display.MinLuminance()), y_max = std::log10(o_.display.MaxLuminance());
-    if (o_.temporal) y = filter_.Update(y, t.seconds, o_.temporal_cutoff, y_min, y_max);
+    ToneCurve unheld = y;
+    if (o_.temporal) {
+      y = unheld = filter_.Update(y, t.seconds, o_.temporal_cutoff, y_min, y_max);
+      if (!flat) y = hold_.Update(y, PixelHistogram(d), t.seconds, o_.hold_cutoff, o_.hold_stops * std::log10(2.0), y_min, y_max);
+    }
     lut_ = MakeLut(y, o_, floor);
+    // Lists (the mesh in the 3-D view) take the curve without the hold: the hold steadies a
+    // view whose content the camera changes; the whole model's content does not change.
+    list_lut_ = hold_.shift() != 0 ? MakeLut(unheld, o_, floor) : lut_;
     has_lut_ = true;
     curve_ = y;
     if (gpu_) {
@@ -63,7 +70,7 @@ class Mantiuk08 final : public Operator {
   std::vector<Float3> MapList(const std::vector<Float3>& in) override {
     if (!has_lut_) return Operator::MapList(in);
     std::vector<Float3> out(in.size());
-    for (std::size_t i = 0; i < in.size(); ++i) out[i] = NoData(in[i]) ? Float3{0, 0, 0} : ApplyCurve(in[i], lut_);
+    for (std::size_t i = 0; i < in.size(); ++i) out[i] = NoData(in[i]) ? Float3{0, 0, 0} : ApplyCurve(in[i], list_lut_);
     return out;
   }
 
@@ -81,7 +88,8 @@ class Mantiuk08 final : public Operator {
  private:
   Options o_;
   CurveFilter filter_;
-  CurveLut lut_{};
+  BrightnessHold hold_;
+  CurveLut lut_{}, list_lut_{};
   ToneCurve curve_{};
   bool has_lut_ = false;
   std::unique_ptr<CudaWorkspace> gpu_;
@@ -106,6 +114,8 @@ Options OptionsFrom(const Params& p) {
   o.csf = p.at("csf") != 0;
   o.temporal = p.at("temporal") != 0;
   o.temporal_cutoff = p.at("temporal_hz");
+  o.hold_stops = p.at("hold");
+  o.hold_cutoff = p.at("hold_hz");
   return o;
 }
 
@@ -133,6 +143,11 @@ OperatorDecl Declaration() {
       {"csf", "Contrast sensitivity", K::kBool, 0, 1, 1, "", "Weigh contrasts by the eye's sensitivity to their frequency."},
       {"temporal", "Temporal filter", K::kBool, 0, 1, 1, "", "For video: low-pass the curve over time so the view does not flicker."},
       {"temporal_hz", "Filter cut-off", K::kReal, 0.05, 10, 0.5, "Hz", "Cut-off frequency of the curve's time filter."},
+      {"hold", "Brightness hold", K::kReal, 0, 4, 2, "stops",
+       "For video: up to this many stops, the time filter holds the view's mean brightness steady while the camera "
+       "turns to brighter or darker surfaces, and lets it adapt at the pace below. 0 turns it off."},
+      {"hold_hz", "Brightness adaptation", K::kReal, 0.01, 10, 0.1, "Hz",
+       "Cut-off frequency of the held brightness: at 0.1 Hz the view adapts to what is in view over about three seconds."},
   };
   d.presets = {
       {"lcd_office", "LCD, office", {{"gamma", 2.2}, {"peak", 100}, {"black", 0.8}, {"ambient", 400}, {"reflectivity", 0.01}}},
