@@ -51,7 +51,7 @@ Command AddSimulateCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "simulate", "Write a synthetic auto-exposure RGB-D sequence with ground truth");
   cmd->add_option("--out", a->out, "Output sequence folder (must be new or empty)")->required();
-  cmd->add_option("--scene", a->scene, "Built-in scene")->check(CLI::IsMember({"room", "desk"}))
+  cmd->add_option("--scene", a->scene, "Built-in scene")->check(CLI::IsMember({"room", "desk", "hall"}))
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed: textures, lights, path, noise")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Number of frames")->check(CLI::Range(1, 1000000))->capture_default_str();

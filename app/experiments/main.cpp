@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   calibration->add_option("--sweeps", cal->sweeps, "At most this many sweeps of 3 curves (default: all 67)")
       ->check(CLI::Range(1, 1000));
   calibration->add_option("--scene", cal->scene, "Scene of the simulated sweeps")
-      ->check(CLI::IsMember({"room", "desk"}))->capture_default_str();
+      ->check(CLI::IsMember({"room", "desk", "hall"}))->capture_default_str();
   calibration->add_option("--noise-scale", cal->noise_scale, "Multiplies the simulated sensor noise")
       ->check(CLI::Range(0.0, 10.0))->capture_default_str();
   commands.push_back({calibration, [cal] { return RunCalibrationAccuracy(*cal); }});

@@ -86,6 +86,35 @@ CameraPath CameraPath::Handheld(const Scene& scene, std::uint32_t seed, int fram
   return path;
 }
 
+CameraPath CameraPath::Walk(const Scene& scene, std::uint32_t seed, int frames, double fps) {
+  if (frames <= 0) throw SettingError("--frames", "must be positive");
+  CameraPath path;
+  path.fps_ = fps;
+  const Vec3 lo = V(scene.room_lo()), hi = V(scene.room_hi());
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double a = std::max(0.3, 0.5 * (hi.x() - lo.x()) - 2.3), b = std::max(0.3, 0.5 * (hi.y() - lo.y()) - 1.9);
+  const double ph[3] = {HashToUnit(seed * 5 + 1) * 6.283, HashToUnit(seed * 5 + 2) * 6.283,
+                        HashToUnit(seed * 5 + 3) * 6.283};
+  const double speed = 0.4;                   // m/s
+  const double omega = speed / (0.5 * (a + b));  // rad/s about the centre (about that pace)
+  for (int i = 0; i < frames; ++i) {
+    const double t = i / fps;
+    const double th = ph[0] + omega * t;
+    const Vec3 eye = centre + Vec3(a * std::cos(th), b * std::sin(th), 0) + Vec3(0, 0, 1.5 - centre.z()) +
+                     Vec3(0, 0, 0.05 * std::sin(0.9 * t + ph[1])) +
+                     0.004 * Vec3(std::sin(7.3 * t), std::sin(6.1 * t + 1), std::sin(8.7 * t + 2));
+    // Outward normal of the ellipse, panned and tilted.
+    const Vec3 out = Vec3(b * std::cos(th), a * std::sin(th), 0).normalized();
+    const double yaw = 0.87 * std::sin(0.23 * t + ph[2]);               // ±50 degrees
+    const double pitch = -0.2 + 0.18 * std::sin(0.31 * t + ph[1]);     // -21 to -1 degrees
+    const Vec3 h = Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * out;
+    const Vec3 dir = (h * std::cos(pitch) + Vec3(0, 0, std::sin(pitch))).normalized();
+    const double roll = 0.05 * std::sin(0.5 * t + ph[1]) + 0.004 * std::sin(9.1 * t);
+    path.poses_.push_back(LookAt(eye, eye + dir, roll));
+  }
+  return path;
+}
+
 CameraPath CameraPath::Static(Float3 eye, Float3 target, int frames, double fps) {
   if (frames <= 0) throw SettingError("--frames", "must be positive");
   CameraPath path;

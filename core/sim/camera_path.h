@@ -17,6 +17,12 @@ class CameraPath {
   // small hand tremor. Deterministic for a seed.
   static CameraPath Handheld(const Scene& scene, std::uint32_t seed, int frames, double fps = 30.0,
                              double segment_s = 4.0);
+  // Walking round a large room (the hall): the eye goes round an ellipse about the room's
+  // centre (2.3 m from the end walls, 1.9 m from the side walls) at a walking pace of
+  // 0.4 m/s, facing out towards the walls and the furniture along them within the
+  // sensor's depth range, panning ±50 degrees to either side and tilting down to the floor
+  // and up to the walls, with a small hand tremor. Deterministic for a seed.
+  static CameraPath Walk(const Scene& scene, std::uint32_t seed, int frames, double fps = 30.0);
   // One pose for every frame: from `eye` towards `target`.
   static CameraPath Static(Float3 eye, Float3 target, int frames, double fps = 30.0);
   // The static view used for exposure sweeps of a scene (window and shadow both in view).

@@ -219,7 +219,7 @@ Float3 Jitter(std::mt19937& rng, Float3 c, float j) {
 
 }  // namespace
 
-std::vector<std::string> Scene::Names() { return {"room", "desk"}; }
+std::vector<std::string> Scene::Names() { return {"room", "desk", "hall"}; }
 
 Scene Scene::Build(const std::string& name, std::uint32_t seed) {
   Scene s;
@@ -331,8 +331,72 @@ Scene Scene::Build(const std::string& name, std::uint32_t seed) {
     s.ambient_ = {0.02f, 0.02f, 0.022f};
     s.bright_targets_ = {{0.f, 2.6f, 1.2f}, {2.2f, 2.7f, 0.8f}, {1.8f, 3.0f, 1.0f}};
     s.dark_targets_ = {{1.8f, 3.0f, 0.2f}, {3.9f, 3.3f, 0.4f}, {3.5f, 0.2f, 0.3f}};
+  } else if (name == "hall") {
+    // A 12 x 8 m hall, 3.5 m high: furniture along every wall, a row of pillars and islands
+    // of furniture down the middle, windows on two walls, lamps under the ceiling. Walked
+    // round by CameraPath::Walk, which keeps the walls and furniture within depth range.
+    s.room_lo_ = {0, 0, 0};
+    s.room_hi_ = {12, 8, 3.5f};
+    s.wall_material_[0] = mat(Pattern::kNoise, {0.74f, 0.70f, 0.62f}, {0.52f, 0.48f, 0.40f}, 0.45f);
+    s.wall_material_[1] = mat(Pattern::kChecker, {0.72f, 0.72f, 0.76f}, {0.40f, 0.42f, 0.50f}, 0.6f);
+    s.wall_material_[2] = mat(Pattern::kStripes, {0.80f, 0.78f, 0.70f}, {0.50f, 0.58f, 0.66f}, 0.35f);
+    s.wall_material_[3] = mat(Pattern::kDetails, {0.74f, 0.74f, 0.70f}, {0.06f, 0.06f, 0.09f}, 0.25f);
+    s.wall_material_[4] = mat(Pattern::kChecker, {0.55f, 0.40f, 0.25f}, {0.33f, 0.22f, 0.13f}, 0.4f);
+    s.wall_material_[5] = mat(Pattern::kUniform, {0.85f, 0.85f, 0.85f}, {0.85f, 0.85f, 0.85f}, 1.f);
+    const int window = emissive({240.f, 250.f, 280.f});
+    const int wood = mat(Pattern::kNoise, {0.62f, 0.44f, 0.26f}, {0.40f, 0.27f, 0.14f}, 0.08f);
+    const int dark = mat(Pattern::kUniform, {0.12f, 0.12f, 0.13f}, {0.1f, 0.1f, 0.1f}, 1.f);
+    const int shelf = mat(Pattern::kStripes, {0.85f, 0.84f, 0.78f}, {0.22f, 0.34f, 0.26f}, 0.14f);
+    const int books = mat(Pattern::kStripes, {0.20f, 0.30f, 0.70f}, {0.85f, 0.80f, 0.30f}, 0.06f);
+    const int crate = mat(Pattern::kChecker, {0.70f, 0.55f, 0.30f}, {0.45f, 0.32f, 0.15f}, 0.15f);
+    const int fabric = mat(Pattern::kNoise, {0.62f, 0.16f, 0.14f}, {0.38f, 0.08f, 0.08f}, 0.12f);
+    const int stone = mat(Pattern::kNoise, {0.66f, 0.66f, 0.64f}, {0.42f, 0.42f, 0.44f}, 0.2f);
+    const int ball = mat(Pattern::kDetails, {0.90f, 0.85f, 0.20f}, {0.05f, 0.10f, 0.60f}, 0.06f);
+    const int ball2 = mat(Pattern::kChecker, {0.20f, 0.60f, 0.30f}, {0.90f, 0.90f, 0.90f}, 0.1f);
+    const int metal = mat(Pattern::kUniform, {0.55f, 0.55f, 0.58f}, {0.5f, 0.5f, 0.5f}, 1.f);
+    // Windows in the +x and -y walls.
+    s.primitives_.push_back(Box({11.99f, 2.5f, 1.0f}, {12.1f, 5.5f, 2.6f}, window));
+    s.primitives_.push_back(Box({4.0f, -0.1f, 1.1f}, {7.0f, 0.01f, 2.5f}, window));
+    // Along the -x wall: shelves with books.
+    for (float y : {0.8f, 3.2f, 5.6f}) {
+      s.primitives_.push_back(Box({0.f, y, 0.f}, {0.45f, y + 1.6f, 1.9f}, shelf));
+      s.primitives_.push_back(Box({0.45f, y + 0.1f, 0.9f + 0.1f * u(rng)}, {0.55f, y + 1.5f, 1.2f}, books));
+    }
+    // Along the +y wall: a long sofa, a table, crates.
+    s.primitives_.push_back(Box({1.5f, 7.0f, 0.f}, {4.5f, 8.f, 0.45f}, fabric));
+    s.primitives_.push_back(Box({1.5f, 7.7f, 0.45f}, {4.5f, 8.f, 0.95f}, fabric));
+    s.primitives_.push_back(Box({6.0f, 6.6f, 0.72f}, {8.0f, 7.6f, 0.77f}, wood));
+    for (float x : {6.05f, 7.90f})
+      for (float y : {6.65f, 7.50f}) s.primitives_.push_back(Box({x, y, 0.f}, {x + 0.05f, y + 0.05f, 0.72f}, dark));
+    s.primitives_.push_back(Box({9.2f, 7.0f, 0.f}, {10.0f, 7.8f, 0.8f}, crate));
+    s.primitives_.push_back(Box({10.2f, 7.2f, 0.f}, {10.8f, 7.8f, 0.6f}, crate));
+    s.primitives_.push_back(Box({9.4f, 7.2f, 0.8f}, {9.9f, 7.7f, 1.2f}, crate));
+    // Along the +x wall (beside the window) and the -y wall: cabinets, crates, a bench.
+    s.primitives_.push_back(Box({11.3f, 0.5f, 0.f}, {12.f, 1.8f, 1.1f}, shelf));
+    s.primitives_.push_back(Box({11.4f, 6.2f, 0.f}, {12.f, 7.6f, 0.9f}, crate));
+    s.primitives_.push_back(Box({1.0f, 0.f, 0.f}, {3.0f, 0.5f, 0.5f}, wood));
+    s.primitives_.push_back(Box({8.5f, 0.f, 0.f}, {10.5f, 0.6f, 1.4f}, shelf));
+    s.primitives_.push_back(Box({8.7f, 0.6f, 0.9f + 0.05f * u(rng)}, {10.3f, 0.7f, 1.15f}, books));
+    // Pillars down the middle, and islands of furniture between them.
+    for (float x : {4.f, 6.f, 8.f}) s.primitives_.push_back(Cylinder(x, 4.f, 0.3f, 0.f, 3.5f, stone));
+    s.primitives_.push_back(Box({4.6f, 3.6f, 0.f}, {5.4f, 4.4f, 0.75f}, crate));
+    s.primitives_.push_back(Box({6.7f, 3.6f, 0.f}, {7.3f, 4.4f, 1.0f}, shelf));
+    s.primitives_.push_back(Sphere({5.0f + 0.1f * u(rng), 4.0f, 0.95f}, 0.2f, ball));
+    s.primitives_.push_back(Sphere({10.6f, 2.6f + 0.1f * u(rng), 0.35f}, 0.35f, ball2));
+    s.primitives_.push_back(Sphere({0.9f, 2.8f, 0.3f}, 0.3f, ball));
+    s.primitives_.push_back(Cylinder(7.5f, 1.0f, 0.2f, 0.f, 0.7f, metal));
+    s.primitives_.push_back(Cylinder(2.0f, 6.0f, 0.03f, 0.f, 1.7f, metal));  // lamp pole
+    // Light: the windows (point lights inside them), lamps under the ceiling, a floor lamp.
+    light({11.6f, 4.0f, 1.8f}, {4.0f, 4.1f, 4.5f});
+    light({5.5f, 0.4f, 1.8f}, {4.0f, 4.1f, 4.5f});
+    for (float x : {3.f, 6.f, 9.f}) light({x, 2.f, 3.3f}, {1.2f, 1.1f, 0.9f});
+    for (float x : {3.f, 9.f}) light({x, 6.f, 3.3f}, {1.2f, 1.1f, 0.9f});
+    light({2.0f, 6.0f, 1.85f}, {1.0f, 0.8f, 0.55f});
+    s.ambient_ = {0.03f, 0.03f, 0.032f};
+    s.bright_targets_ = {{12.f, 4.0f, 1.8f}, {5.5f, 0.f, 1.8f}, {2.0f, 6.0f, 1.5f}, {11.6f, 1.2f, 1.0f}};
+    s.dark_targets_ = {{6.9f, 7.1f, 0.3f}, {0.5f, 2.0f, 0.3f}, {10.0f, 7.5f, 0.3f}, {3.0f, 0.3f, 0.3f}};
   } else {
-    throw SettingError("--scene", "unknown scene '" + name + "'; choose one of: room, desk");
+    throw SettingError("--scene", "unknown scene '" + name + "'; choose one of: room, desk, hall");
   }
   s.Index();
   return s;

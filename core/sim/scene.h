@@ -55,7 +55,7 @@ struct Hit {
 
 class Scene {
  public:
-  // Names: "room", "desk". Throws hdrf::SettingError for an unknown name. The seed varies
+  // Names: "room", "desk", "hall". Throws hdrf::SettingError for an unknown name. The seed varies
   // texture colours, furniture placement and light strengths within plausible bounds.
   static Scene Build(const std::string& name, std::uint32_t seed);
   static std::vector<std::string> Names();

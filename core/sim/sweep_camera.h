@@ -13,7 +13,7 @@
 namespace hdrf::sim {
 
 struct SyntheticSweepOptions {
-  std::string scene = "room";  // built-in scene: room, desk
+  std::string scene = "room";  // built-in scene: room, desk, hall
   std::uint32_t seed = 1;      // textures, lights and noise
   int width = 320, height = 240;
   radiometry::InverseResponse response;  // the truth; scaled to f^-1(128) = 1 when used

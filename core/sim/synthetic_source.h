@@ -18,7 +18,7 @@
 namespace hdrf::sim {
 
 struct SimOptions {
-  std::string scene = "room";  // built-in scene: room, desk
+  std::string scene = "room";  // built-in scene: room, desk, hall
   std::uint32_t seed = 1;      // varies textures, lights, path and noise
   int width = 320, height = 240;
   int frames = 300;
