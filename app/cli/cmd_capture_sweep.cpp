@@ -26,7 +26,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("capture-sweep",
                                  "Capture an exposure sweep for calibration from a camera (live or synthetic)");
   cmd->add_option("--source", a->source,
-                  "synthetic[:response=xtion|srgb|linear|gammaG|FILE.json,scene=room|desk,size=WxH,seed=N] or "
+                  "synthetic[:response=xtion|srgb|linear|gammaG|FILE.json,scene=room|desk|hall,size=WxH,seed=N] or "
                   "openni:[device=URI|SERIAL,mode=vga|qvga,unit=MS,gain=N]")
       ->capture_default_str();
   cmd->add_option("--out", a->out, "Sweep folder to write (absent or empty; with --resume, the one to complete)")

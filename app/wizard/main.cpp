@@ -20,7 +20,7 @@ struct CommandLine {
   QCommandLineParser p;
   QCommandLineOption source{"source",
                             "openni:[device=SERIAL,mode=vga|qvga,unit=MS], synthetic[:response=NAME|FILE.json,"
-                            "scene=room|desk,size=WxH], or a recorded sweep folder",
+                            "scene=room|desk|hall,size=WxH], or a recorded sweep folder",
                             "SPEC"};
   QCommandLineOption sweep{"sweep-folder", "Where the capture writes the sweep", "DIR"};
   QCommandLineOption report{"report", "Where the report is written", "DIR"};

@@ -1,5 +1,5 @@
 // The cameras a calibration sweep is captured from, by spec (docs/calibration_wizard.md):
-//   synthetic[:response=NAME|FILE.json][,scene=room|desk][,size=WxH][,seed=N]
+//   synthetic[:response=NAME|FILE.json][,scene=room|desk|hall][,size=WxH][,seed=N]
 //       the synthetic sensor through a chosen response (xtion, srgb, linear, gammaG, or the
 //       response and noise of a sensor.json), so that demos and tests need no hardware
 //   openni:[device=URI|SERIAL][,mode=vga|qvga][,unit=MS][,gain=N]
