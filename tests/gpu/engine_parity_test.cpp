@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "common/cuda_runtime.h"
@@ -19,26 +20,14 @@
 namespace hdrf::pipeline {
 namespace {
 
-std::vector<FrameInput> Frames(int n, int w, int h, int seed = 1) {
+// n frames of a built-in scene (the hall is walked round), flickering auto exposure.
+std::vector<FrameInput> Frames(int n, int w, int h, int seed = 1, const std::string& scene = "room") {
   sim::SimOptions so;
+  so.scene = scene;
   so.width = w;
   so.height = h;
   so.frames = n;
   so.seed = seed;
-  so.ae.mode = sim::AeMode::kFlicker;
-  SyntheticFrameSource src(so);
-  std::vector<FrameInput> out(static_cast<std::size_t>(n));
-  for (auto& f : out) src.Next(f);
-  return out;
-}
-
-// n frames of the hall (12 x 8 m), walked round, flickering auto exposure.
-std::vector<FrameInput> HallFrames(int n, int w, int h) {
-  sim::SimOptions so;
-  so.scene = "hall";
-  so.width = w;
-  so.height = h;
-  so.frames = n;
   so.ae.mode = sim::AeMode::kFlicker;
   SyntheticFrameSource src(so);
   std::vector<FrameInput> out(static_cast<std::size_t>(n));
@@ -378,7 +367,7 @@ TEST(GpuStreaming, AHallAtOneCentimetreInTwoGigabytes) {
   const char* env = std::getenv("HDRF_HALL_FRAMES");
   const char* size = std::getenv("HDRF_HALL_SIZE");  // e.g. 320 (x240)
   const int w = size ? std::atoi(size) : 640, h = w * 3 / 4, n = env ? std::max(30, std::atoi(env)) : 1000;
-  const auto frames = HallFrames(n, w, h);
+  const auto frames = Frames(n, w, h, 1, "hall");
   const SensorInfo s = Sensor(w, h);
   const sim::Scene scene = sim::Scene::Build("hall", 1);
   const Pose T0 = *frames[0].T_world_camera_true;
