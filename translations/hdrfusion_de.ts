@@ -203,6 +203,10 @@
         <source>the scan has no keyframes: the texture holds the volume&apos;s radiance only (as sharp as the voxels)</source>
         <translation>der Scan hat keine Schlüsselbilder: die Textur enthält nur die Radianz des Volumens (so scharf wie die Voxel)</translation>
     </message>
+    <message>
+        <source>the pose moved %1 m in %2 s since the last accepted one (%3 m/s, more than %4 m/s)</source>
+        <translation>die Pose hat sich seit der letzten angenommenen um %1 m in %2 s bewegt (%3 m/s, mehr als %4 m/s)</translation>
+    </message>
 </context>
 <context>
     <name>QObject</name>
@@ -963,6 +967,18 @@
     <message>
         <source>Raise for noisy depth at a distance</source>
         <translation>Erhöhen für verrauschte Tiefe in der Entfernung</translation>
+    </message>
+    <message>
+        <source>Largest speed</source>
+        <translation>Größte Geschwindigkeit</translation>
+    </message>
+    <message>
+        <source>A pose implying a faster camera since the last accepted one is not fused</source>
+        <translation>Eine Pose, die seit der letzten angenommenen eine schnellere Kamera bedeutet, wird nicht fusioniert</translation>
+    </message>
+    <message>
+        <source>Raise for a camera swung or carried faster than this</source>
+        <translation>Erhöhen für eine Kamera, die schneller geschwenkt oder getragen wird</translation>
     </message>
 </context>
 <context>

@@ -96,6 +96,7 @@ constexpr std::size_t kMinHistory = 5;
 constexpr double kShiftM = 0.1;      // relocalisation: starts shifted this far along each camera axis...
 constexpr double kTurnRad = 0.0873;  // ...and turned this far (5 degrees) about its x and y axes
 constexpr double kRecoveringGrowth = 1.5;  // residual bound while recovering, times the usual
+constexpr double kSpeedSlackM = 0.02;     // the speed check's allowance for a pose's own noise, metres
 constexpr int kMaxExtrapolate = 30;  // frames the last motion is carried on while lost
 void Push(std::vector<double>& v, double x) {
   v.push_back(x);
@@ -148,6 +149,19 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
   v.score = ratios.worst();
   v.residual_ratio = ratios.worst();
   if (!v.why.empty()) return v;
+  // Speed since the last accepted pose, over the real time between them: a pose that slides
+  // along a weakly constrained view carries the constant-velocity prediction with it (so the
+  // jump check, against the prediction, passes), but soon implies a camera faster than a hand.
+  // Relocalised poses too: a camera carried elsewhere while covered had the time to get there;
+  // a recording spliced from two has timestamps that go back or jump, and is not bounded.
+  if (pose_time_ && in.timestamp > *pose_time_) {
+    const double dt = in.timestamp - *pose_time_;
+    const double moved = (r.T_world_camera.translation() - pose_.translation()).norm();
+    if (moved > t.max_speed_mps * dt + kSpeedSlackM) {
+      v.why = Say(words::kTooFast, {Num(moved, 2), Num(dt, 2), Num(moved / dt, 1), Num(t.max_speed_mps, 1)});
+      return v;
+    }
+  }
   const double robust = UsesIcp(t.kind) ? r.icp_inliers : r.photo_inliers;
   if (robust < t.min_robust_inliers) {
     v.why = Say(words::kFewPixelsFit, {std::to_string(int(100 * robust))});
@@ -245,6 +259,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   if (!anchored_) {
     anchored_ = true;
     previous_pose_ = pose_;
+    pose_time_ = in.timestamp;
     first_exposure_ms_ = in.exposure_ms;
     rep.tracking.T_world_camera = pose_;
     rep.tracking.inlier_share = 1;
@@ -346,8 +361,12 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     } else {
       accepted = true;
       lost_run_ = 0;
+      // A pose found by relocalisation after this frame's own tracking failed is a loss too:
+      // it is followed, and fused once confirmed like any other recovery.
+      if (rep.reloc_entry >= 0 && !recovering_) recovering_ = true, confirmed_ = 0;
       previous_pose_ = rep.reloc_entry >= 0 ? r.T_world_camera : pose_;
       pose_ = r.T_world_camera;
+      pose_time_ = in.timestamp;
       if (recovering_ && ++confirmed_ < o_.tracker.confirm_frames) {
         rep.state = rep.reloc_entry >= 0 ? FrameState::kRelocalised : FrameState::kConfirming;
         rep.why = Say(words::kConfirmingPose,

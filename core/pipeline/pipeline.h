@@ -163,6 +163,7 @@ class Pipeline {
   bool reference_from_model_ = true;       // else the previous tracked frame
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
+  std::optional<double> pose_time_;         // the timestamp of pose_ (none after a resume)
   int index_ = 0;
   std::optional<double> first_exposure_ms_;
   bool full_reported_ = false;

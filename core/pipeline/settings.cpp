@@ -169,6 +169,7 @@ constexpr Words kWords[] = {
     {"tracker.max_condition", "Worst conditioning", "Lower to refuse frames of flat walls that cannot fix every direction"},
     {"tracker.max_jump_m", "Largest jump", "Raise for a fast hand-held camera"},
     {"tracker.max_jump_deg", "Largest turn", "Raise for a fast turning camera"},
+    {"tracker.max_speed_mps", "Largest speed", "Raise for a camera swung or carried faster than this"},
     {"tracker.verify_growth", "Residual growth limit", "Raise when good frames are refused after a change of scene"},
     {"tracker.verify_floor_m", "Always-good depth residual", "Raise for noisy depth when good frames are refused"},
     {"tracker.verify_floor_photo", "Always-good colour residual", "Raise for noisy colour when good frames are refused"},
@@ -329,6 +330,9 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Real("tracker.max_jump_deg", 1e-3, 180, "deg",
                    "A frame turning farther from its prediction is lost",
                    HDRF_FIELD(tracker.max_jump_deg)));
+  v.push_back(Real("tracker.max_speed_mps", 0.01, 100, "m/s",
+                   "A pose implying a faster camera since the last accepted one is not fused",
+                   HDRF_FIELD(tracker.max_speed_mps)));
   v.push_back(Expert(Real("tracker.verify_growth", 1, 1000, "",
                           "A pose whose residual exceeds this many times the scan's recent median is not fused",
                           HDRF_FIELD(tracker.verify_growth))));

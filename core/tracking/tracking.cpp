@@ -45,6 +45,7 @@ void TrackerOptions::Check() const {
     throw SettingError("tracker.min_inlier_share", "must be in [0, 1]");
   if (!(max_condition > 1)) throw SettingError("tracker.max_condition", "must be > 1");
   if (!(max_jump_m > 0)) throw SettingError("tracker.max_jump_m", "must be > 0");
+  if (!(max_speed_mps > 0)) throw SettingError("tracker.max_speed_mps", "must be > 0");
   if (!(max_jump_deg > 0 && max_jump_deg <= 180)) throw SettingError("tracker.max_jump_deg", "must be in (0, 180]");
   if (!(verify_growth >= 1 && verify_growth <= 1000)) throw SettingError("tracker.verify_growth", "must be in [1, 1000]");
   if (!(verify_floor_m >= 0 && verify_floor_m <= 1)) throw SettingError("tracker.verify_floor_m", "must be in [0, 1] m");

@@ -48,6 +48,9 @@ struct TrackerOptions {
   float min_inlier_share = 0.2f;
   double max_condition = 1e8;
   float max_jump_m = 0.25f, max_jump_deg = 25.f;
+  // Fastest a hand-held camera moves (pipeline verification: a pose farther from the last
+  // accepted one than this speed over the time between them, plus 2 cm, is not fused).
+  float max_speed_mps = 2.f;
   // Verification (the pipeline's, after tracking): a pose is fused only when its residual
   // (point-to-surface where ICP takes part, else normalized radiance) is within
   // verify_growth times the scan's recent median, or below the floor; when its terms' mean

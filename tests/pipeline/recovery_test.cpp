@@ -189,6 +189,36 @@ TEST(Recovery, ScansWithNoUsableDepthAnchorNothing) {
   EXPECT_EQ(s.anchor, -1);
 }
 
+// A camera faster than a hand: after frame 40, every fourth of the room's frames (about
+// 3 cm apart) arrives with timestamps 2 ms apart (a clock at the wrong rate), 14 m/s by the
+// timestamps. The poses are tracked as before, but none is within the speed bound (2 m/s
+// plus 2 cm for a pose's noise) of the last accepted one, so none is fused: each is lost and
+// says why (the first, the speed; later ones, tracked on from the last accepted pose, fail
+// further checks). At their real timestamps every one is fused.
+TEST(Recovery, APoseFasterThanTheCameraCanMoveIsNotFused) {
+  std::vector<int> order = Range(0, 41);
+  for (int i = 44; i < 120; i += 4) order.push_back(i);
+  const double t40 = Room(40)[40].timestamp;
+  int k = 0;
+  const auto fast_clock = [&](pipeline::FrameInput& in) {
+    if (k >= 40) in.timestamp = t40 + (k - 40) * 0.002;
+    ++k;
+  };
+  const Scan s = ScanRoom(order, {}, {}, false, fast_clock);
+  Print("fast clock", s);
+  for (std::size_t i = 0; i < 41; ++i) EXPECT_TRUE(s.reports[i].fused) << i << ": " << s.reports[i].why;
+  for (std::size_t i = 41; i < order.size(); ++i) {
+    EXPECT_FALSE(s.reports[i].fused) << i;
+    EXPECT_EQ(s.reports[i].state, FrameState::kLost) << i;
+  }
+  EXPECT_NE(s.reports[41].why.find("m/s"), std::string::npos) << s.reports[41].why;
+  EXPECT_LT(s.max_fused_error_m, 0.01);
+  // The same frames at their real timestamps: every one fused.
+  const Scan real = ScanRoom(order, {}, {}, false);
+  for (const auto& r : real.reports) EXPECT_TRUE(r.fused) << r.index << ": " << r.why;
+  EXPECT_LT(real.max_fused_error_m, 0.01);
+}
+
 // The tracking experiment's sequences (the room, 1000 frames, 320x240, flicker and smooth
 // auto exposure) scanned with verification and relocalisation: frames lost, relocalisations
 // and the ATE over every frame (a frame not fused keeps the last pose). Minutes on two CPU
