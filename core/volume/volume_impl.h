@@ -463,7 +463,9 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     prev_f = f;
     prev_t = t;
     prev_valid = true;
-    const float step = 0.8f * f * trunc;
+    // A sample at the truncation (f near 1) is at least the truncation distance in front of
+    // any surface: the next may be a whole truncation on. Nearer, 0.8 of the distance.
+    const float step = f > 0.99f ? trunc : 0.8f * f * trunc;
     t += 0.8f * vs > step ? 0.8f * vs : step;
   }
   return hit;
