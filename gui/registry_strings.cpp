@@ -232,7 +232,7 @@ static const char* const kEngineWords[] = {
     QT_TRANSLATE_NOOP("Engine", "only %1 % of pixels matched"),
     QT_TRANSLATE_NOOP("Engine", "ill-conditioned (geometry and texture too poor)"),
     QT_TRANSLATE_NOOP("Engine", "pose jumped implausibly far"),
-    QT_TRANSLATE_NOOP("Engine", "the pose moved %1 m in %2 s since the last accepted one (%3 m/s, more than %4 m/s)"),
+    QT_TRANSLATE_NOOP("Engine", "the pose moved %1 m in %2 ms since the last accepted one (%3 m/s, more than %4 m/s)"),
     QT_TRANSLATE_NOOP("Engine", "point-to-surface error %1 cm, %2x the scan's usual %3 cm"),
     QT_TRANSLATE_NOOP("Engine", "radiance residual %1, %2x the scan's usual %3"),
     QT_TRANSLATE_NOOP("Engine", "only %1 % of the matched pixels fit the pose"),

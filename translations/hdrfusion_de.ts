@@ -204,8 +204,8 @@
         <translation>der Scan hat keine Schlüsselbilder: die Textur enthält nur die Radianz des Volumens (so scharf wie die Voxel)</translation>
     </message>
     <message>
-        <source>the pose moved %1 m in %2 s since the last accepted one (%3 m/s, more than %4 m/s)</source>
-        <translation>die Pose hat sich seit der letzten angenommenen um %1 m in %2 s bewegt (%3 m/s, mehr als %4 m/s)</translation>
+        <source>the pose moved %1 m in %2 ms since the last accepted one (%3 m/s, more than %4 m/s)</source>
+        <translation>die Pose hat sich seit der letzten angenommenen um %1 m in %2 ms bewegt (%3 m/s, mehr als %4 m/s)</translation>
     </message>
 </context>
 <context>

@@ -27,7 +27,7 @@ struct Wording {
   X(kFewPixelsMatched, "only %1 % of pixels matched")                                                                \
   X(kIllConditioned, "ill-conditioned (geometry and texture too poor)")                                              \
   X(kPoseJumped, "pose jumped implausibly far")                                                                      \
-  X(kTooFast, "the pose moved %1 m in %2 s since the last accepted one (%3 m/s, more than %4 m/s)")                  \
+  X(kTooFast, "the pose moved %1 m in %2 ms since the last accepted one (%3 m/s, more than %4 m/s)")                 \
   X(kIcpResidualHigh, "point-to-surface error %1 cm, %2x the scan's usual %3 cm")                                    \
   X(kPhotoResidualHigh, "radiance residual %1, %2x the scan's usual %3")                                             \
   X(kFewPixelsFit, "only %1 % of the matched pixels fit the pose")                                                   \

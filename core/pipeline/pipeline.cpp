@@ -158,7 +158,7 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
     const double dt = in.timestamp - *pose_time_;
     const double moved = (r.T_world_camera.translation() - pose_.translation()).norm();
     if (moved > t.max_speed_mps * dt + kSpeedSlackM) {
-      v.why = Say(words::kTooFast, {Num(moved, 2), Num(dt, 2), Num(moved / dt, 1), Num(t.max_speed_mps, 1)});
+      v.why = Say(words::kTooFast, {Num(moved, 2), Num(1e3 * dt, 0), Num(moved / dt, 1), Num(t.max_speed_mps, 1)});
       return v;
     }
   }

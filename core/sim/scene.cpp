@@ -221,6 +221,12 @@ Float3 Jitter(std::mt19937& rng, Float3 c, float j) {
 
 std::vector<std::string> Scene::Names() { return {"room", "desk", "hall"}; }
 
+std::string Scene::NamesText() {
+  std::string text;
+  for (const std::string& n : Names()) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
 Scene Scene::Build(const std::string& name, std::uint32_t seed) {
   Scene s;
   s.name_ = name;
@@ -337,6 +343,7 @@ Scene Scene::Build(const std::string& name, std::uint32_t seed) {
     // round by CameraPath::Walk, which keeps the walls and furniture within depth range.
     s.room_lo_ = {0, 0, 0};
     s.room_hi_ = {12, 8, 3.5f};
+    s.walked_round_ = true;
     s.wall_material_[0] = mat(Pattern::kNoise, {0.74f, 0.70f, 0.62f}, {0.52f, 0.48f, 0.40f}, 0.45f);
     s.wall_material_[1] = mat(Pattern::kChecker, {0.72f, 0.72f, 0.76f}, {0.40f, 0.42f, 0.50f}, 0.6f);
     s.wall_material_[2] = mat(Pattern::kStripes, {0.80f, 0.78f, 0.70f}, {0.50f, 0.58f, 0.66f}, 0.35f);
@@ -396,7 +403,7 @@ Scene Scene::Build(const std::string& name, std::uint32_t seed) {
     s.bright_targets_ = {{12.f, 4.0f, 1.8f}, {5.5f, 0.f, 1.8f}, {2.0f, 6.0f, 1.5f}, {11.6f, 1.2f, 1.0f}};
     s.dark_targets_ = {{6.9f, 7.1f, 0.3f}, {0.5f, 2.0f, 0.3f}, {10.0f, 7.5f, 0.3f}, {3.0f, 0.3f, 0.3f}};
   } else {
-    throw SettingError("--scene", "unknown scene '" + name + "'; choose one of: room, desk, hall");
+    throw SettingError("--scene", "unknown scene '" + name + "'; choose one of: " + NamesText());
   }
   s.Index();
   return s;

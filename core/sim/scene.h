@@ -61,6 +61,11 @@ class Scene {
   static std::vector<std::string> Names();
 
   const std::string& name() const { return name_; }
+  // True for scenes too large to be seen from near their centre (the hall): the synthetic
+  // sensor walks round them (CameraPath::Walk) instead of looking about (Handheld).
+  bool walked_round() const { return walked_round_; }
+  // The names, for messages: "room, desk, hall".
+  static std::string NamesText();
   Float3 room_lo() const { return room_lo_; }
   Float3 room_hi() const { return room_hi_; }
 
@@ -92,6 +97,7 @@ class Scene {
   std::string name_;
   std::uint32_t seed_ = 0;
   Float3 room_lo_{}, room_hi_{};
+  bool walked_round_ = false;
   int wall_material_[6] = {0, 0, 0, 0, 0, 0};  // -x, +x, -y, +y, floor, ceiling
   std::vector<Material> materials_;
   std::vector<Primitive> primitives_;

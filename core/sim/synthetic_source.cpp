@@ -41,7 +41,7 @@ void SimOptions::Check() const {
     throw SettingError("--depth-scale", "must be positive and keep the far range within 16 bits");
   const auto names = Scene::Names();
   if (std::find(names.begin(), names.end(), scene) == names.end())
-    throw SettingError("--scene", "unknown scene '" + scene + "'; choose one of: room, desk, hall");
+    throw SettingError("--scene", "unknown scene '" + scene + "'; choose one of: " + Scene::NamesText());
 }
 
 PinholeCamera SimCamera(int width, int height) {
@@ -55,7 +55,7 @@ SyntheticSource::SyntheticSource(SimOptions options)
       scene_(Scene::Build(o_.scene, o_.seed)),
       path_(o_.sweep ? CameraPath::SweepView(scene_, int(o_.sweep_exposures_ms.size()) *
                                                          o_.sweep_repeats, o_.fps)
-                     : o_.scene == "hall" ? CameraPath::Walk(scene_, o_.seed, o_.frames, o_.fps)
+                     : scene_.walked_round() ? CameraPath::Walk(scene_, o_.seed, o_.frames, o_.fps)
                                           : CameraPath::Handheld(scene_, o_.seed, o_.frames, o_.fps)),
       ae_(o_.sweep ? AeOptions{} : o_.ae, o_.seed),
       forward_(o_.response),
