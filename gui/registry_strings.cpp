@@ -236,6 +236,8 @@ static const char* const kEngineWords[] = {
     QT_TRANSLATE_NOOP("Engine", "point-to-surface error %1 cm, %2x the scan's usual %3 cm"),
     QT_TRANSLATE_NOOP("Engine", "radiance residual %1, %2x the scan's usual %3"),
     QT_TRANSLATE_NOOP("Engine", "only %1 % of the matched pixels fit the pose"),
+    QT_TRANSLATE_NOOP("Engine", "the pose departs from the predicted motion by %1 cm and %2 degrees, %3x what a hand-held camera does"),
+    QT_TRANSLATE_NOOP("Engine", "recovering, and only %1 % of the matched pixels have usable colour (the rest clipped or dark): too little to confirm the pose"),
     QT_TRANSLATE_NOOP("Engine", "the exposure the pose implies is %1x the sensor's reported exposure (relative to the scan so far)"),
     QT_TRANSLATE_NOOP("Engine", "waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed"),
     QT_TRANSLATE_NOOP("Engine", "confirming the pose after a loss (%1 of %2 frames)"),

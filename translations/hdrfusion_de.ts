@@ -207,6 +207,14 @@
         <source>the pose moved %1 m in %2 ms since the last accepted one (%3 m/s, more than %4 m/s)</source>
         <translation>die Pose hat sich seit der letzten angenommenen um %1 m in %2 ms bewegt (%3 m/s, mehr als %4 m/s)</translation>
     </message>
+    <message>
+        <source>the pose departs from the predicted motion by %1 cm and %2 degrees, %3x what a hand-held camera does</source>
+        <translation>die Pose weicht um %1 cm und %2 Grad von der vorhergesagten Bewegung ab, das %3-Fache dessen, was eine Kamera in der Hand tut</translation>
+    </message>
+    <message>
+        <source>recovering, and only %1 % of the matched pixels have usable colour (the rest clipped or dark): too little to confirm the pose</source>
+        <translation>in der Wiederherstellung, und nur %1 % der zugeordneten Pixel haben brauchbare Farbe (der Rest übersteuert oder dunkel): zu wenig, um die Pose zu bestätigen</translation>
+    </message>
 </context>
 <context>
     <name>QObject</name>

@@ -31,6 +31,10 @@ struct Wording {
   X(kIcpResidualHigh, "point-to-surface error %1 cm, %2x the scan's usual %3 cm")                                    \
   X(kPhotoResidualHigh, "radiance residual %1, %2x the scan's usual %3")                                             \
   X(kFewPixelsFit, "only %1 % of the matched pixels fit the pose")                                                   \
+  X(kLeftPrediction, "the pose departs from the predicted motion by %1 cm and %2 degrees, %3x what a hand-held "   \
+                     "camera does")                                                                                 \
+  X(kTooLittleColour, "recovering, and only %1 % of the matched pixels have usable colour (the rest clipped or dark): "  \
+                      "too little to confirm the pose")                                                              \
   X(kExposureDisagrees, "the exposure the pose implies is %1x the sensor's reported exposure (relative to the "      \
                         "scan so far)")                                                                              \
   X(kWaitingForAnchor, "waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed")        \

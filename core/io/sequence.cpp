@@ -205,9 +205,9 @@ void SequenceWriter::Add(double timestamp, const ColorImage& color, const DepthR
   if (exposure_ms && options_.write_exposure) {
     char buf[96];
     if (gain)
-      std::snprintf(buf, sizeof buf, "%s %.6g %.6g\n", name.c_str(), *exposure_ms, *gain);
+      std::snprintf(buf, sizeof buf, "%s %.17g %.17g\n", name.c_str(), *exposure_ms, *gain);
     else
-      std::snprintf(buf, sizeof buf, "%s %.6g\n", name.c_str(), *exposure_ms);
+      std::snprintf(buf, sizeof buf, "%s %.17g\n", name.c_str(), *exposure_ms);
     Append(exposure_, buf, "exposure.txt");
   }
   if (T_world_camera && options_.write_groundtruth)

@@ -46,6 +46,15 @@ void LuminanceOnGpu(ImageView<const Float3> radiance, ImageView<float> lum) {
   LuminanceOf(par::Gpu{}, radiance, lum);
 }
 
+void ClippedLuminanceOnGpu(ImageView<const Float3> radiance, Float3 clip, ImageView<float> lum) {
+  ClippedLuminanceOf(par::Gpu{}, radiance, clip, lum);
+}
+
+void TrackingLuminanceOnGpu(ImageView<const Rgb8> color, ImageView<const Float3> radiance,
+                            ImageView<const float> confidence, ImageView<float> lum, ImageView<float> weight) {
+  TrackingLuminanceOf(par::Gpu{}, color, radiance, confidence, lum, weight);
+}
+
 void NormalizeOnGpu(ImageView<const float> lum, const Scratch& s, const NormalizedRadianceOptions& o,
                     ImageView<float> out) {
   Normalize(par::Gpu{}, lum, s, o, out);

@@ -22,6 +22,39 @@ void LuminanceOf(Device d, ImageView<const Float3> radiance, ImageView<float> lu
   par::ForEachPixel(d, radiance.width, radiance.height, HDRF_LAMBDA(int x, int y) { lum(x, y) = hdrf::Luminance(radiance(x, y)); });
 }
 
+// The live frame's luminance for tracking: as LuminanceOf, but 0 (no data) where any channel
+// of the pixel is clipped at 255, and the tracking weight there 0 too. A clipped pixel's
+// radiance is only a lower bound that moves with the exposure (a window, a lamp): inside a
+// patch's statistics it shifts the normalized radiance of the unclipped pixels beside it,
+// while the model's ray cast has no such pixels (a window has no depth), so the photometric
+// term pulls the pose across the clipped region's border. Kept out, both sides normalize
+// over the same kind of pixels. (Keeping the clipped pixels' values, normalized by their
+// unclipped surround, was tried: their large values beside the border, where the tracker
+// samples and differentiates the image, undid the gain on the 1000-frame room runs.)
+HDRF_HD bool PixelClipped(Rgb8 c) { return c.r == 255 || c.g == 255 || c.b == 255; }
+template <typename Device>
+void TrackingLuminanceOf(Device d, ImageView<const Rgb8> color, ImageView<const Float3> radiance,
+                         ImageView<const float> confidence, ImageView<float> lum, ImageView<float> weight) {
+  par::ForEachPixel(d, radiance.width, radiance.height, HDRF_LAMBDA(int x, int y) {
+    const bool clipped = PixelClipped(color(x, y));
+    lum(x, y) = clipped ? 0.f : hdrf::Luminance(radiance(x, y));
+    weight(x, y) = clipped ? 0.f : confidence(x, y);
+  });
+}
+
+// The model's luminance for tracking a live frame: 0 (no data) where any channel of the
+// model's radiance reaches `clip`, the live frame's clipping level in model units (where the
+// live frame reads 255 and TrackingLuminanceOf leaves the pixel out): the two sides then
+// normalize over the same pixels, also where the live exposure clips surfaces the model holds.
+HDRF_HD float ClippedLuminance(Float3 r, Float3 clip) {
+  return (r.x >= clip.x || r.y >= clip.y || r.z >= clip.z) ? 0.f : hdrf::Luminance(r);
+}
+template <typename Device>
+void ClippedLuminanceOf(Device d, ImageView<const Float3> radiance, Float3 clip, ImageView<float> lum) {
+  par::ForEachPixel(d, radiance.width, radiance.height,
+                    HDRF_LAMBDA(int x, int y) { lum(x, y) = ClippedLuminance(radiance(x, y), clip); });
+}
+
 // The row pass of the integral images on the CPU: each row is independent.
 inline void RowPasses(par::Host d, ImageView<const float> cells, NrIntegrals in) {
   par::ForEach(d, cells.height, [=](int y) { NrRowPass(cells, in, y); });
@@ -52,6 +85,9 @@ void Normalize(Device d, ImageView<const float> lum, const Scratch& s, const Nor
 
 // The same drivers on the GPU (normalized_radiance_cuda.cu), over device views.
 void LuminanceOnGpu(ImageView<const Float3> radiance, ImageView<float> lum);
+void ClippedLuminanceOnGpu(ImageView<const Float3> radiance, Float3 clip, ImageView<float> lum);
+void TrackingLuminanceOnGpu(ImageView<const Rgb8> color, ImageView<const Float3> radiance,
+                            ImageView<const float> confidence, ImageView<float> lum, ImageView<float> weight);
 void NormalizeOnGpu(ImageView<const float> lum, const Scratch& s, const NormalizedRadianceOptions& o,
                     ImageView<float> out);
 

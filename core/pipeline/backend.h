@@ -93,8 +93,10 @@ class Backend {
   virtual void Raycast(const Pose& T_world_camera) = 0;
   virtual bool HasRender() const = 0;
   // The tracking reference, with the pose it belongs to: the last ray cast (frame to model),
-  // or the live pyramid placed at a pose (frame to frame).
-  virtual void ReferenceFromRender() = 0;
+  // or the live pyramid placed at a pose (frame to frame). The ray cast's normalized radiance
+  // leaves out model radiance at or above `clip` in any channel (the live frame's clipping
+  // level in model units; infinite: none), where the model keeps no NR of its own.
+  virtual void ReferenceFromRender(const Float3& clip) = 0;
   virtual void ReferenceFromLive(const Pose& T_world_camera) = 0;
   virtual bool HasReference() const = 0;
   virtual Pose ReferencePose() const = 0;

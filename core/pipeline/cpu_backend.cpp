@@ -1,12 +1,14 @@
 // The reference backend: host images and OpenMP loops over the modules' per-element
 // functions. It owns the frame's buffers and the model and calls the modules; the
 // algorithms live in the modules (imaging, tracking, volume, mesh).
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "common/error.h"
 #include "imaging/imaging_driver.h"
+#include "normalized_radiance/normalized_radiance_driver.h"
 #include "pipeline/backend.h"
 #include "radiometry/radiance_driver.h"
 #include "tracking/pyramid_driver.h"
@@ -28,8 +30,7 @@ class CpuBackend final : public Backend {
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
     const int w = color.width(), h = color.height();
-    // Only the brightness-constancy tracker looks at the colour again (stage 2).
-    if (o_.tracker.kind == tracking::TrackerKind::kIntensity) color_ = color.Clone();
+    color_ = color.Clone();  // stage 2 looks at it again (clipped pixels; the intensity tracker)
     radiance_ = RadianceImage(w, h);
     conf_ = Image<float>(w, h);
     maxconf_ = Image<float>(w, h);
@@ -44,14 +45,17 @@ class CpuBackend final : public Backend {
   }
 
   void Normalize() override {
-    nr_ = nr::NormalizedRadiance(nr::Luminance(radiance_), o_.nr);
+    Image<float> lum(color_.width(), color_.height());
+    track_conf_ = Image<float>(color_.width(), color_.height());
+    nr::TrackingLuminanceOf(par::Host{}, View(color_), View(radiance_), View(conf_), View(lum), View(track_conf_));
+    nr_ = nr::NormalizedRadiance(lum, o_.nr);
     if (o_.tracker.kind == tracking::TrackerKind::kIntensity) {
       track_image_ = Image<float>(color_.width(), color_.height());
       track_weight_ = Image<float>(color_.width(), color_.height());
       imaging::RawIntensity(par::Host{}, View(color_), View(track_image_), View(track_weight_));
     } else {
       track_image_ = nr_.Clone();
-      track_weight_ = conf_.Clone();
+      track_weight_ = track_conf_.Clone();
     }
   }
 
@@ -79,7 +83,9 @@ class CpuBackend final : public Backend {
   }
 
   exposure::ExposureEstimate EstimateExposure(const Pose& T) override {
-    return exposure::EstimateExposureRatio(render_.vertex, render_.radiance, radiance_, conf_, cam_, T, o_.exposure);
+    // Clipped pixels' radiance is only a bound: the ratio comes from the unclipped ones.
+    return exposure::EstimateExposureRatio(render_.vertex, render_.radiance, radiance_, track_conf_, cam_, T,
+                                           o_.exposure);
   }
 
   void Integrate(const Pose& T, float ratio) override {
@@ -102,11 +108,16 @@ class CpuBackend final : public Backend {
   }
   bool HasRender() const override { return has_render_; }
 
-  void ReferenceFromRender() override {
+  void ReferenceFromRender(const Float3& clip) override {
     // The ray cast's vertices and normals are in world coordinates already; the reference
     // carries the pose they were cast from.
-    reference_ = tracking::MakeReference(render_.vertex, render_.normal, render_.nr, cam_, o_.tracker.levels,
-                                         render_pose_);
+    Image<float> nr = render_.nr.Clone();
+    if (!volume::EncodingStoresNr(o_.volume.encoding) && std::isfinite(clip.x)) {
+      Image<float> lum(cam_.width, cam_.height);
+      nr::ClippedLuminanceOf(par::Host{}, View(render_.radiance), clip, View(lum));
+      nr = nr::NormalizedRadiance(lum, o_.nr);
+    }
+    reference_ = tracking::MakeReference(render_.vertex, render_.normal, nr, cam_, o_.tracker.levels, render_pose_);
   }
   bool HasReference() const override { return !reference_.levels.empty(); }
   Pose ReferencePose() const override { return reference_.T_world_camera; }
@@ -173,12 +184,13 @@ class CpuBackend final : public Backend {
  private:
   const PipelineOptions o_;
   PinholeCamera cam_;
-  ColorImage color_;  // the frame's colour, kept for the intensity tracker only
+  ColorImage color_;  // the frame's colour (clipped pixels; the intensity tracker)
   std::vector<float> inverse_, pcf_;
   volume::Volume volume_;
   imaging::BilateralTables bilateral_;
   RadianceImage radiance_;
   Image<float> conf_, maxconf_, nr_, track_image_, track_weight_;
+  Image<float> track_conf_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
   DepthImage depth_;
   tracking::Live live_;
   tracking::Reference reference_;

@@ -5,6 +5,7 @@
 // back the Gauss-Newton systems (33 doubles per iteration), the exposure estimate and the
 // count of new bricks; nothing else crosses the bus.
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -83,7 +84,7 @@ class CudaBackend final : public Backend {
       : o_(s.options), cam_(s.camera),
         bilateral_(imaging::MakeBilateralTables(o_.depth.sigma_space_px, o_.depth.sigma_depth_m, o_.depth.radius)),
         color_(cam_.width, cam_.height), depth_raw_(cam_.width, cam_.height), depth_(cam_.width, cam_.height),
-        conf_(cam_.width, cam_.height), maxconf_(cam_.width, cam_.height), lum_(cam_.width, cam_.height),
+        conf_(cam_.width, cam_.height), maxconf_(cam_.width, cam_.height), lum_(cam_.width, cam_.height), conf_track_(cam_.width, cam_.height),
         nr_(cam_.width, cam_.height), lum_render_(cam_.width, cam_.height), radiance_(cam_.width, cam_.height),
         nr_scratch_(cam_.width, cam_.height, o_.nr.downsample), render_(cam_.width, cam_.height),
         exposure_(cam_.width, cam_.height, o_.exposure), volume_(o_.volume) {
@@ -107,13 +108,14 @@ class CudaBackend final : public Backend {
   }
 
   void Normalize() override {
-    NormalizeRadiance(radiance_, lum_, nr_);
     LiveLevelD& L0 = *live_[0];
+    nr::TrackingLuminanceOnGpu(color_.view(), radiance_.view(), conf_.view(), lum_.view(), conf_track_.view());
+    nr::NormalizeOnGpu(lum_.view(), nr_scratch_.views(), o_.nr, nr_.view());
     if (o_.tracker.kind == tracking::TrackerKind::kIntensity) {
       imaging::RawIntensityOnGpu(color_.view(), L0.intensity.view(), L0.weight.view());
     } else {
       CopyD2D(L0.intensity, nr_);
-      CopyD2D(L0.weight, conf_);
+      CopyD2D(L0.weight, conf_track_);
     }
   }
 
@@ -133,7 +135,7 @@ class CudaBackend final : public Backend {
   long ReferenceValid() override { return sums_.CountReferenceVertices(ref_[0]->vertex.view()); }
 
   exposure::ExposureEstimate EstimateExposure(const Pose& T) override {
-    return exposure_.Estimate({render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_.view(), cam_,
+    return exposure_.Estimate({render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_,
                                ToRigidTransform(T.inverse())});
   }
 
@@ -164,10 +166,15 @@ class CudaBackend final : public Backend {
   }
   bool HasRender() const override { return has_render_; }
 
-  void ReferenceFromRender() override {
+  void ReferenceFromRender(const Float3& clip) override {
     CopyD2D(ref_[0]->vertex, render_.vertex);
     CopyD2D(ref_[0]->normal, render_.normal);
-    CopyD2D(ref_[0]->intensity, render_.nr);
+    if (!volume::EncodingStoresNr(o_.volume.encoding) && std::isfinite(clip.x)) {
+      nr::ClippedLuminanceOnGpu(render_.radiance.view(), clip, lum_render_.view());
+      nr::NormalizeOnGpu(lum_render_.view(), nr_scratch_.views(), o_.nr, ref_[0]->intensity.view());
+    } else {
+      CopyD2D(ref_[0]->intensity, render_.nr);
+    }
     BuildReferencePyramid();
     reference_pose_ = render_pose_;
     has_reference_ = true;
@@ -254,6 +261,7 @@ class CudaBackend final : public Backend {
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
   DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
+  DeviceImage<float> conf_track_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
   DeviceImage<Float3> radiance_;
   NrScratchD nr_scratch_;
   std::vector<std::unique_ptr<LiveLevelD>> live_;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@
 namespace hdrf::pipeline {
 
 namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr Float3 kNoClip{kInf, kInf, kInf};
 using Clock = std::chrono::steady_clock;
 double Ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -48,6 +51,10 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
   inverse_.Check("sensor response");
   pcf_ = radiometry::ComputePcf(inverse_, sensor.noise ? *sensor.noise : radiometry::DefaultNoise(inverse_));
   const auto inverse = inverse_.Flat();
+  // A channel reads 255 from halfway between the radiances of levels 254 and 255 on.
+  const auto clip = [&](int c) { return 0.5f * (inverse[std::size_t(c * 256 + 254)] + inverse[std::size_t(c * 256 + 255)]); };
+  live_clip_ = {clip(0), clip(1), clip(2)};
+  ref_clip_ = kNoClip;
   std::vector<float> p(768);
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < 256; ++i) p[std::size_t(c * 256 + i)] = pcf_[o_.pcf][c][i];
@@ -98,6 +105,9 @@ constexpr double kTurnRad = 0.0873;  // ...and turned this far (5 degrees) about
 constexpr double kRecoveringGrowth = 1.5;  // residual bound while recovering, times the usual
 constexpr double kSpeedSlackM = 0.02;     // the speed check's allowance for a pose's own noise, metres
 constexpr int kMaxExtrapolate = 30;  // frames the last motion is carried on while lost
+constexpr double kMinColourShare = 0.1;    // recovering: colour terms per depth term to confirm a pose
+constexpr double kMaxPriorSigmas = 5;      // a pose this many prior deviations from the prediction: refused
+constexpr double kMinExposureShare = 0.03;  // exposure samples per sample point for a usable estimate
 void Push(std::vector<double>& v, double x) {
   v.push_back(x);
   if (v.size() > kHistory) v.erase(v.begin());
@@ -162,14 +172,36 @@ Pipeline::Verdict Pipeline::Verify(const tracking::TrackResult& r, const FrameIn
       return v;
     }
   }
+  // Agreement with the motion prior the pose was solved with: a hand-held camera departs
+  // from constant velocity by about 1 cm and 1 degree a frame; the pixel terms dragging the
+  // pose several times that from the prediction is a view that fits a wrong pose (a striped
+  // wall one stripe over, a nearly all-clipped frame), not a hand.
+  if (r.prior_sigmas > kMaxPriorSigmas) {
+    v.why = Say(words::kLeftPrediction,
+                {Num(100 * r.prior_offset_m, 1), Num(r.prior_offset_rad * 180 / 3.14159265358979, 1),
+                 Num(r.prior_sigmas, 1)});
+    return v;
+  }
   const double robust = UsesIcp(t.kind) ? r.icp_inliers : r.photo_inliers;
   if (robust < t.min_robust_inliers) {
     v.why = Say(words::kFewPixelsFit, {std::to_string(int(100 * robust))});
     return v;
   }
+  // Recovering with depth and colour, a pose is told from the wrong ones by its radiance
+  // (wrong poses along a flat wall fit the depth as well as the right one): a frame whose
+  // colour is nearly all clipped or black cannot confirm one.
+  if (recovering && t.kind == tracking::TrackerKind::kNrIcp && r.icp_matched > 0 &&
+      r.photo_matched < kMinColourShare * r.icp_matched) {
+    v.why = Say(words::kTooLittleColour, {std::to_string(int(100 * r.photo_matched / r.icp_matched))});
+    return v;
+  }
   Backend& b = *backend_;
   if (b.HasRender()) {
     v.exposure = b.EstimateExposure(r.T_world_camera);
+    // An estimate from a few unclipped pixels of a frame otherwise clipped (a thin dark edge
+    // in a white frame) measures those pixels, not the exposure: not used.
+    const long grid = long(cam_.width / o_.exposure.stride) * long(cam_.height / o_.exposure.stride);
+    if (v.exposure.samples < long(kMinExposureShare * double(grid))) v.exposure.valid = false;
     if (v.exposure.valid && in.exposure_ms && first_exposure_ms_ && *in.exposure_ms > 0 && v.exposure.ratio > 0) {
       v.drift = std::log(v.exposure.ratio / (*first_exposure_ms_ / *in.exposure_ms));
       if (exposure_drifts_.size() >= kMinHistory) {
@@ -205,6 +237,39 @@ tracking::TrackerOptions Pipeline::TrackerNow() const {
     t.photo_sigma = float(std::max(double(t.photo_sigma_floor), Median(photo_residuals_)));
   return t;
 }
+
+double Pipeline::Steps(const FrameInput& in) const {
+  // Timestamps jitter by a few milliseconds, and frames delivered in a burst after a stall
+  // carry the times they were read at: only a gap half again as long as the last one
+  // (frames dropped) lengthens the step, and none shortens it.
+  if (!pose_time_ || !previous_time_) return 1;
+  const double last = *pose_time_ - *previous_time_, now = in.timestamp - *pose_time_;
+  if (!(last > 0) || !(now > 0)) return 1;
+  const double steps = now / last;
+  return steps < 1.5 ? 1.0 : std::min(steps, double(kMaxExtrapolate));
+}
+
+double Pipeline::PredictedRatio(const FrameInput& in) const {
+  // The live frame's exposure against the model's: the sensor's reported exposure with the
+  // bias the scan has measured against it, else the last accepted frame's estimate.
+  double ratio = last_ratio_;
+  if (in.exposure_ms && first_exposure_ms_ && *in.exposure_ms > 0 && *first_exposure_ms_ > 0)
+    ratio = *first_exposure_ms_ / *in.exposure_ms * std::exp(exposure_drifts_.empty() ? 0.0 : Median(exposure_drifts_));
+  return ratio > 0 && std::isfinite(ratio) ? ratio : 0;
+}
+
+Float3 Pipeline::ReferenceClip(const FrameInput& in) const {
+  const double ratio = PredictedRatio(in);
+  return ratio > 0 ? live_clip_ * float(ratio) : kNoClip;
+}
+
+namespace {
+// Whether a reference normalized with clipping level `a` must be normalized again for `b`.
+bool ClipChanged(const Float3& a, const Float3& b) {
+  if (std::isinf(a.x) || std::isinf(b.x)) return std::isinf(a.x) != std::isinf(b.x);
+  return std::fabs(a.x - b.x) > 0.02f * b.x;
+}
+}  // namespace
 
 FrameReport Pipeline::Process(const FrameInput& in) {
   if (in.color.width() != cam_.width || in.color.height() != cam_.height ||
@@ -253,14 +318,22 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // 3. Track against the reference and verify the pose; when lost or recovering, the scan's
   // earlier views are tried too. The anchoring frame has no reference and defines the world.
   b.BuildLive();
+  // The model's radiance the live frame would clip is left out of the reference's normalized
+  // radiance as the live frame's clipped pixels are left out of its own.
+  const Float3 clip = reference_from_model_ ? ReferenceClip(in) : kNoClip;
+  if (anchored_ && reference_from_model_ && lost_run_ == 0 && b.HasRender() && ClipChanged(ref_clip_, clip)) {
+    b.ReferenceFromRender(clip);
+    ref_clip_ = clip;
+  }
   bool fuse = false, accepted = false, searched = false;
   Verdict verdict;
   RelocCode code;  // the frame's relocalisation code, made once where it is needed
   if (!anchored_) {
     anchored_ = true;
     previous_pose_ = pose_;
-    pose_time_ = in.timestamp;
+    pose_time_ = previous_time_ = in.timestamp;
     first_exposure_ms_ = in.exposure_ms;
+    last_ratio_ = 1;
     rep.tracking.T_world_camera = pose_;
     rep.tracking.inlier_share = 1;
     rep.quality = 1;
@@ -271,14 +344,19 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     // sides can offer: where the model covers only part of the view (an area not scanned
     // yet), matching all of that part is a success, not a loss.
     const tracking::TrackerOptions topt = TrackerNow();
-    auto track = [&](const Pose& from) {
+    auto track = [&](const Pose& from, const tracking::MotionPrior* prior = nullptr) {
       return tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T, topt); }, topt.levels,
-                             std::min(b.LiveValid(), b.ReferenceValid()), from, topt);
+                             std::min(b.LiveValid(), b.ReferenceValid()), from, topt, prior);
     };
     const Pose velocity = previous_pose_.inverse() * pose_;
     tracking::TrackResult r;
     if (lost_run_ == 0 || !reference_from_model_) {  // (frame to frame: the reference is the last tracked frame)
-      r = track(se3::Orthonormalized(pose_ * velocity));
+      // The last motion carried on over the time since the last pose: frames the sensor
+      // dropped (or the caller skipped) leave a longer step to predict, and a looser prior.
+      const double steps = Steps(in);
+      const Pose predicted = se3::Orthonormalized(pose_ * se3::Exp(steps * se3::Log(velocity)));
+      const tracking::MotionPrior prior{predicted, steps};
+      r = track(predicted, &prior);
       verdict = Verify(r, in, recovering_);
     } else {
       // Lost: from the last pose carried on with its last motion (a camera that went on
@@ -290,7 +368,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       bool first = true;
       for (const Pose& start : {carried, pose_}) {
         b.Raycast(start);
-        b.ReferenceFromRender();
+        b.ReferenceFromRender(clip);
+        ref_clip_ = clip;
         const tracking::TrackResult rc = track(start);
         const Verdict vc = Verify(rc, in, true);
         if (first || (vc.why.empty() && (!verdict.why.empty() || vc.score < verdict.score))) {
@@ -320,7 +399,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const RelocEntry* e = candidates[c];
         b.Raycast(e->T_world_camera);
-        b.ReferenceFromRender();
+        b.ReferenceFromRender(clip);
+        ref_clip_ = clip;
         std::vector<Pose> starts = {e->T_world_camera};
         if (c == 0) {
           for (int axis = 0; axis < 3; ++axis)
@@ -360,11 +440,16 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       ++lost_run_;
     } else {
       accepted = true;
+      const bool after_loss = lost_run_ > 0;
       lost_run_ = 0;
       // A pose found by relocalisation after this frame's own tracking failed is a loss too:
       // it is followed, and fused once confirmed like any other recovery.
       if (rep.reloc_entry >= 0 && !recovering_) recovering_ = true, confirmed_ = 0;
-      previous_pose_ = rep.reloc_entry >= 0 ? r.T_world_camera : pose_;
+      // After a loss the last accepted pose is frames old: its motion to this one is no one
+      // frame's. The next prediction starts from rest, as after a relocalisation.
+      const bool restart = rep.reloc_entry >= 0 || after_loss;
+      previous_pose_ = restart ? r.T_world_camera : pose_;
+      previous_time_ = restart ? std::optional<double>(in.timestamp) : pose_time_;
       pose_ = r.T_world_camera;
       pose_time_ = in.timestamp;
       if (recovering_ && ++confirmed_ < o_.tracker.confirm_frames) {
@@ -382,8 +467,11 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   rep.T_world_camera = pose_;
   const auto t3 = now();
   // 4. Exposure compensation against the model (estimated while verifying the pose).
+  // Where the frame has too few unclipped pixels over the model to measure it (a frame all
+  // white), the exposure is the one predicted from the sensor's report or the last frames.
   double t_ratio = 1;
-  if (accepted && verdict.exposure.valid) t_ratio = verdict.exposure.ratio;
+  if (accepted && verdict.exposure.valid) t_ratio = last_ratio_ = verdict.exposure.ratio;
+  else if (accepted && PredictedRatio(in) > 0) t_ratio = PredictedRatio(in);
   rep.exposure_samples = verdict.exposure.samples;
   rep.exposure_ratio = t_ratio;
   if (in.exposure_ms && first_exposure_ms_) rep.exposure_ratio_reported = *first_exposure_ms_ / *in.exposure_ms;
@@ -411,7 +499,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // to model) or this frame where its pose was accepted (frame to frame).
   if (rep.fused || accepted || searched || !b.HasRender()) b.Raycast(pose_);
   if (reference_from_model_) {
-    b.ReferenceFromRender();
+    b.ReferenceFromRender(clip);
+    ref_clip_ = clip;
   } else if (accepted || !b.HasReference()) {
     b.ReferenceFromLive(pose_);
     reference_color_ = in.color.Clone();
@@ -480,7 +569,8 @@ void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
   // The state the last Process() left: the ray cast from the last pose, and the reference.
   if (model.allocated_bricks() > 0) b.Raycast(pose_);
   if (reference_from_model_) {
-    if (b.HasRender()) b.ReferenceFromRender();
+    if (b.HasRender()) b.ReferenceFromRender(kNoClip);
+    ref_clip_ = kNoClip;
   } else {
     b.Convert(p.reference_color, p.reference_depth);
     b.Normalize();

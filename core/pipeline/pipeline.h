@@ -164,6 +164,8 @@ class Pipeline {
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
   std::optional<double> pose_time_;         // the timestamp of pose_ (none after a resume)
+  std::optional<double> previous_time_;     // ... and of previous_pose_
+  double Steps(const FrameInput& in) const;  // last motions since pose_ for the prediction
   int index_ = 0;
   std::optional<double> first_exposure_ms_;
   bool full_reported_ = false;
@@ -176,6 +178,14 @@ class Pipeline {
   std::vector<double> icp_residuals_, photo_residuals_, exposure_drifts_;  // of the last fused frames, newest last
   int lost_run_ = 0;  // frames since the last accepted pose
   Relocaliser reloc_;
+  // Clipping: the radiance at which the live frame reads 255, per channel (live units), the
+  // last accepted frame's exposure ratio, and the clipping level (model units) the current
+  // reference was normalized with (infinite: none).
+  Float3 live_clip_{};
+  double last_ratio_ = 0;
+  Float3 ref_clip_{};
+  double PredictedRatio(const FrameInput& in) const;  // model / live radiance before tracking (0: unknown)
+  Float3 ReferenceClip(const FrameInput& in) const;   // the live frame's clipping level, model units
 
   struct Verdict {
     std::string why;  // empty: verified

@@ -198,7 +198,10 @@ TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
 }
 
 TrackResult Track(const Accumulator& accumulate, int available_levels, long live_valid,
-                  const Pose& initial, const TrackerOptions& o) {
+                  const Pose& initial, const TrackerOptions& o, const MotionPrior* prior) {
+  constexpr double kMotionSigmaM = 0.01, kMotionSigmaRad = 1.0 * 3.14159265358979 / 180.0;
+  const double spans = prior && prior->frames > 0 ? prior->frames : 1.0;
+  const double sigma_m = kMotionSigmaM * spans, sigma_rad = kMotionSigmaRad * spans;
   TrackResult res;
   Pose T = initial;
   const int levels = std::min(o.levels, available_levels);
@@ -218,6 +221,14 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
         for (int j = i; j < 6; ++j, ++k) H(i, j) = H(j, i) = acc.v[k];
         g(i) = acc.v[GnSystem::kH + i];
       }
+      if (prior) {
+        const Vec6 e = se3::Log(prior->T_world_camera.inverse() * T);
+        for (int i = 0; i < 6; ++i) {
+          const double lambda = 1.0 / (i < 3 ? sigma_m * sigma_m : sigma_rad * sigma_rad);
+          H(i, i) += lambda;
+          g(i) += lambda * e(i);
+        }
+      }
       const Mat6 Hd = H + 1e-6 * Mat6::Identity() * H.trace() / 6.0;
       const Vec6d xi = Hd.ldlt().solve(-g);
       if (!xi.allFinite()) break;
@@ -230,6 +241,14 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
   res.T_world_camera = T;
   res.rms_icp_m = last.icp_w() > 0 ? std::sqrt(last.icp_r2() / last.icp_w()) : 0;
   res.rms_photo = last.photo_w() > 0 ? std::sqrt(last.photo_r2() / last.photo_w()) : 0;
+  if (prior) {
+    const Vec6 e = se3::Log(prior->T_world_camera.inverse() * T);
+    res.prior_offset_m = e.head<3>().norm();
+    res.prior_offset_rad = e.tail<3>().norm();
+    res.prior_sigmas = std::max(res.prior_offset_m / sigma_m, res.prior_offset_rad / sigma_rad);
+  }
+  res.icp_matched = last.icp_n();
+  res.photo_matched = last.photo_n();
   res.icp_inliers = last.icp_n() > 0 ? last.icp_w() / last.icp_n() : 0;
   res.photo_inliers = last.photo_n() > 0 ? last.photo_w() / last.photo_n() : 0;
   // Health, at the finest level.

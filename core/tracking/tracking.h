@@ -120,6 +120,11 @@ struct TrackResult {
   // Mean robust (Huber) weight of the matched terms at the finest level, 0..1: 1 when every
   // residual is within the kernel's threshold; a pose that only half fits pulls it down.
   double icp_inliers = 0, photo_inliers = 0;
+  double icp_matched = 0, photo_matched = 0;  // terms of each kind at the finest level
+  // With a motion prior: how far the pixel terms took the pose from the prediction, in the
+  // prior's own deviations (the larger of translation and rotation); 0 without one.
+  double prior_sigmas = 0;
+  double prior_offset_m = 0, prior_offset_rad = 0;
   double condition = 0;        // of J^T J at the finest level
   int iterations = 0;
   bool lost = false;
@@ -134,8 +139,18 @@ TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
 // the number of pixels that could match at the finest level (for the inlier share): the
 // live pixels with depth, or fewer where the reference covers less.
 using Accumulator = std::function<GnSystem(int level, const Pose& T_world_live)>;
+// With `prior`, each step also weighs a weak motion prior: the pose's offset from the
+// constant-velocity prediction against a hand-held camera's deviation from constant velocity
+// (1 cm and 1 degree per frame interval the prediction spans). Against thousands of pixel
+// terms it is negligible wherever the view constrains the pose; where it does not (a flat
+// wall with no usable texture, a frame whose colour is all clipped), the pose keeps to the
+// prediction there instead of drifting with the noise.
+struct MotionPrior {
+  Pose T_world_camera = Pose::Identity();  // the predicted pose
+  double frames = 1;                       // frame intervals the prediction spans (> 0)
+};
 TrackResult Track(const Accumulator& accumulate, int levels, long live_valid, const Pose& initial,
-                  const TrackerOptions& o);
+                  const TrackerOptions& o, const MotionPrior* prior = nullptr);
 
 // The per-pixel term arguments of one level and pose (shared by the CPU and CUDA sums), and
 // the CPU sum over a level.

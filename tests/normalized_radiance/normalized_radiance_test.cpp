@@ -9,6 +9,7 @@
 #include "support/sim_frames.h"
 #include "support/test_support.h"
 #include "normalized_radiance/normalized_radiance.h"
+#include "normalized_radiance/normalized_radiance_driver.h"
 #include "radiometry/pcf.h"
 #include "radiometry/radiance.h"
 #include "sim/builtin_sensor.h"
@@ -51,6 +52,68 @@ TEST(NormalizedRadiance, IsExposureInvariant) {
   double raw_diff = 0;
   for (std::size_t i = 0; i < a.color.size(); ++i) raw_diff += std::abs(a.color[i].g - b.color[i].g);
   EXPECT_GT(raw_diff / double(a.color.size()), 30.0);
+}
+
+// Pixels clipped at 255 move with the exposure, and where they have no depth (a window, an
+// emitter) the model's ray cast has no radiance there at all: inside a patch's statistics
+// they shift the live frame's normalized radiance of the unclipped pixels beside them, which
+// the model's does not have, and the photometric term pulls the pose across their border.
+// The tracker leaves them out of the live frame (TrackingLuminanceOf): then the unclipped
+// pixels near them normalize as in the model. Here the model is the 4 ms view without the
+// surfaces the 32 ms view clips (as if they were a window), the live frame the 32 ms view.
+TEST(NormalizedRadiance, ClippedLivePixelsAreLeftOutOfTheStatistics) {
+  sim::SimOptions o;
+  o.sweep = true;
+  o.sweep_exposures_ms = {4, 32};
+  o.sweep_repeats = 1;
+  sim::SyntheticSource src(o);
+  const sim::SimFrame a = src.Next(), b = src.Next();
+  const SensorInfo s = src.sensor();
+  const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
+  RadianceImage ra, rb;
+  Image<float> ca, cb, ma, mb;
+  radiometry::ConvertFrame(a.color, *s.response, pcf, 1, ra, ca, ma);
+  radiometry::ConvertFrame(b.color, *s.response, pcf, 1, rb, cb, mb);
+  const int w = ra.width(), h = ra.height();
+  Image<float> model = nr::Luminance(ra);
+  long clipped = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (nr::PixelClipped(b.color(x, y))) model(x, y) = 0.f, ++clipped;
+  const Image<float> nm = nr::NormalizedRadiance(model, {});
+  const Image<float> plain = nr::NormalizedRadiance(nr::Luminance(rb), {});
+  Image<float> lb(w, h), wb(w, h);
+  nr::TrackingLuminanceOf(par::Host{}, View(b.color), View(rb), View(cb), View(lb), View(wb));
+  const Image<float> left_out = nr::NormalizedRadiance(lb, {});
+  // The unclipped, well-exposed pixels within 12 pixels of a clipped one.
+  std::vector<double> d_plain, d_left_out;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (nr::PixelClipped(b.color(x, y))) {
+        ASSERT_EQ(lb(x, y), 0.f);  // no data, no weight, no NR
+        ASSERT_EQ(wb(x, y), 0.f);
+        ASSERT_EQ(left_out(x, y), 0.f);
+        continue;
+      }
+      EXPECT_EQ(wb(x, y), cb(x, y));  // an unclipped pixel keeps its confidence
+      if (ca(x, y) < 0.3f || cb(x, y) < 0.3f) continue;
+      bool near = false;
+      for (int dy = -12; dy <= 12 && !near; ++dy)
+        for (int dx = -12; dx <= 12 && !near; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          near = xx >= 0 && yy >= 0 && xx < w && yy < h && nr::PixelClipped(b.color(xx, yy));
+        }
+      if (!near) continue;
+      d_plain.push_back(std::abs(nm(x, y) - plain(x, y)));
+      d_left_out.push_back(std::abs(nm(x, y) - left_out(x, y)));
+    }
+  std::printf("32 ms view: %ld clipped pixels; %zu unclipped pixels beside them: median |NR difference| from the "
+              "model %.3f with the clipped pixels in the live statistics, %.3f with them left out\n",
+              clipped, d_plain.size(), Median(d_plain), Median(d_left_out));
+  ASSERT_GT(clipped, 500);
+  ASSERT_GT(d_plain.size(), 500u);
+  EXPECT_LT(Median(d_left_out), 0.1);
+  EXPECT_LT(Median(d_left_out), 0.5 * Median(d_plain));
 }
 
 }  // namespace

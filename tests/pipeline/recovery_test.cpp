@@ -215,6 +215,7 @@ TEST(Recovery, APoseFasterThanTheCameraCanMoveIsNotFused) {
   EXPECT_LT(s.max_fused_error_m, 0.01);
   // The same frames at their real timestamps: every one fused.
   const Scan real = ScanRoom(order, {}, {}, false);
+  Print("real clock", real);
   for (const auto& r : real.reports) EXPECT_TRUE(r.fused) << r.index << ": " << r.why;
   EXPECT_LT(real.max_fused_error_m, 0.01);
 }

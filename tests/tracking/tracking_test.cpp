@@ -59,6 +59,48 @@ TEST(Tracking, FollowsTheCameraThroughFourfoldExposureJumps) {
 namespace hdrf::tracking {
 namespace {
 
+// The motion prior: a view that constrains five directions of the pose strongly and one
+// (x: along a flat, untextured wall) only through a weak, biased term. Without the prior the
+// pose slides 5 cm along x to that term's minimum; with it the pose keeps to the prediction
+// along x, and the strongly constrained directions still go where the data put them, even
+// where the prediction was 2 cm off along z.
+TEST(TrackPrior, HoldsTheLooseDirectionAndLeavesTheConstrainedOnes) {
+  const double kStrong = 1e8, kWeak = 1e3, kBias = 0.05;
+  const Accumulator accumulate = [&](int, const Pose& T) {
+    const Vec6 e = se3::Log(T);  // the truth is the identity
+    GnSystem acc;
+    for (int i = 0; i < 6; ++i) {
+      double J[6] = {0, 0, 0, 0, 0, 0};
+      J[i] = 1;
+      if (i == 0) acc.Add(J, e(0) - kBias, kWeak);
+      else acc.Add(J, e(i), kStrong);
+    }
+    acc.icp_n() = 1000;
+    acc.icp_w() = 1000;
+    return acc;
+  };
+  TrackerOptions o;
+  o.max_jump_m = 1;
+  Pose predicted = Pose::Identity();
+  predicted.translation() = Vec3(0, 0, 0.02);
+  const TrackResult free = Track(accumulate, 3, 1000, predicted, o);
+  const MotionPrior one{predicted, 1}, four{predicted, 4};
+  const TrackResult held = Track(accumulate, 3, 1000, predicted, o, &one);
+  // A prediction over four frame intervals (frames dropped) is trusted less: it holds less.
+  const TrackResult looser = Track(accumulate, 3, 1000, predicted, o, &four);
+  const Vec3 tf = free.T_world_camera.translation(), th = held.T_world_camera.translation();
+  const double x4 = looser.T_world_camera.translation().x();
+  std::printf("without the prior x %.2f mm, z %.4f mm; with it x %.2f mm, z %.4f mm; over 4 frames x %.2f mm\n",
+              1e3 * tf.x(), 1e3 * tf.z(), 1e3 * th.x(), 1e3 * th.z(), 1e3 * x4);
+  EXPECT_GT(x4, 3 * th.x());
+  EXPECT_LT(x4, tf.x());
+  EXPECT_NEAR(tf.x(), kBias, 0.002);       // slid to the weak term's minimum
+  EXPECT_LT(std::abs(th.x()), 0.2 * kBias);  // held near the prediction
+  EXPECT_LT(std::abs(th.z()), 1e-4);         // the data win where they constrain the pose
+  EXPECT_LT(std::abs(th.y()), 1e-4);
+  EXPECT_LT(se3::RotationAngle(held.T_world_camera), 1e-4);
+}
+
 // One ICP term: a live point 1 cm in front of a reference plane facing the camera adds the
 // point-to-plane residual with the Jacobian of the plane's normal; a normal turned away
 // beyond the angle gate, or a point beyond the distance gate, adds nothing.
