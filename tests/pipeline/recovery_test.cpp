@@ -222,64 +222,89 @@ TEST(Recovery, APoseFasterThanTheCameraCanMoveIsNotFused) {
 
 // The tracking experiment's sequences (the room, 1000 frames, 320x240, flicker and smooth
 // auto exposure) scanned with verification and relocalisation: frames lost, relocalisations
-// and the ATE over every frame (a frame not fused keeps the last pose). Minutes on two CPU
-// cores: run with HDRF_RECOVERY_LONG=1 (on the GPU machine with HDRF_TEST_DEVICE=cuda).
+// and the ATE over every frame (a frame not fused keeps the last pose).
+struct LongRun {
+  eval::TrajectoryError te;
+  double max_fused_m = 0;
+  int frames = 0, fused = 0, lost = 0;
+};
+LongRun ScanLong(sim::AeMode mode) {
+  const char* name = mode == sim::AeMode::kFlicker ? "flicker" : "smooth";
+  sim::SimOptions so;
+  so.frames = 1000;
+  so.ae.mode = mode;
+  sim::SyntheticSource src(so);
+  pipeline::PipelineOptions o;
+  if (const char* d = std::getenv("HDRF_TEST_DEVICE"); d && std::string(d) == "cuda") o.device = Device::kCuda;
+  pipeline::ScanSession session(o, src.sensor().camera, src.sensor());
+  std::vector<Pose> est, truth;
+  Pose T0 = Pose::Identity();
+  while (!src.done()) {
+    const sim::SimFrame f = src.Next();
+    if (f.index == 0) T0 = f.T_world_camera;
+    pipeline::FrameInput in = test::AsInput(f);
+    in.exposure_ms = f.exposure_ms;
+    const auto& r = session.Process(in);
+    est.push_back(r.T_world_camera);
+    truth.push_back(T0.inverse() * f.T_world_camera);
+  }
+  LongRun run;
+  run.te = eval::CompareTrajectories(est, truth);
+  int trace_from = -1, trace_to = -2;
+  if (const char* t = std::getenv("HDRF_RECOVERY_TRACE")) std::sscanf(t, "%d-%d", &trace_from, &trace_to);
+  int said = 0;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    const auto& r = session.reports()[i];
+    const double e = (est[i].translation() - truth[i].translation()).norm();
+    if (r.fused) run.max_fused_m = std::max(run.max_fused_m, e);
+    // The first frames fused more than 2 cm off, and every change of state, for the log;
+    // HDRF_RECOVERY_TRACE=A-B prints frames A to B with their motion (for a diagnosis).
+    if (trace_from <= int(i) && int(i) <= trace_to && i > 0) {
+      const Pose dt = truth[i - 1].inverse() * truth[i], de = est[i - 1].inverse() * est[i];
+      std::printf("  trace %zu: %s err %.2f cm, true step %.1f mm %.2f deg, est step %.1f mm %.2f deg, cond %.3g, "
+                  "share %.2f, rms %.2f mm / %.3f, inl %.2f / %.2f\n",
+                  i, pipeline::FrameStateName(r.state), 100 * e, 1e3 * se3::TranslationNorm(dt),
+                  se3::RotationAngle(dt) * 180 / M_PI, 1e3 * se3::TranslationNorm(de),
+                  se3::RotationAngle(de) * 180 / M_PI, r.tracking.condition, r.tracking.inlier_share,
+                  1e3 * r.tracking.rms_icp_m, r.tracking.rms_photo, r.tracking.icp_inliers, r.tracking.photo_inliers);
+    }
+    if ((r.fused && e > 0.02 && said++ < 5) || (i > 0 && r.state != session.reports()[i - 1].state))
+      std::printf("  frame %zu: %s, error %.2f cm, quality %.2f, rms %.2f mm / %.3f %s\n", i,
+                  pipeline::FrameStateName(r.state), 100 * e, r.quality, 1e3 * r.tracking.rms_icp_m,
+                  r.tracking.rms_photo, r.why.c_str());
+  }
+  run.frames = session.frames();
+  run.fused = session.fused();
+  run.lost = session.lost();
+  std::printf("%s: %d frames, %d fused, %d lost, %d confirming, %d relocalisations; ATE RMSE %.2f cm (max %.2f cm) over "
+              "every frame; largest error of a fused pose %.2f cm\n",
+              name, session.frames(), session.fused(), session.lost(), session.count(FrameState::kConfirming),
+              session.relocalisations(), 100 * run.te.ate_rmse_m, 100 * run.te.ate_max_m, 100 * run.max_fused_m);
+  return run;
+}
+
+// Both sequences, against the goal (ATE 5 cm over every frame). Minutes on two CPU cores,
+// and the flicker one does not meet it yet: run with HDRF_RECOVERY_LONG=1 (on the GPU
+// machine with HDRF_TEST_DEVICE=cuda; HDRF_RECOVERY_MODE=flicker|smooth runs one).
 TEST(RecoveryLong, ThousandFramesEveryFrameCounted) {
   if (!std::getenv("HDRF_RECOVERY_LONG")) GTEST_SKIP() << "set HDRF_RECOVERY_LONG=1 to run the 1000-frame scans";
   for (auto mode : {sim::AeMode::kFlicker, sim::AeMode::kSmooth}) {
     if (const char* only = std::getenv("HDRF_RECOVERY_MODE");
         only && std::string(only) != (mode == sim::AeMode::kFlicker ? "flicker" : "smooth"))
       continue;
-    sim::SimOptions so;
-    so.frames = 1000;
-    so.ae.mode = mode;
-    sim::SyntheticSource src(so);
-    pipeline::PipelineOptions o;
-    if (const char* d = std::getenv("HDRF_TEST_DEVICE"); d && std::string(d) == "cuda") o.device = Device::kCuda;
-    pipeline::ScanSession session(o, src.sensor().camera, src.sensor());
-    std::vector<Pose> est, truth;
-    Pose T0 = Pose::Identity();
-    while (!src.done()) {
-      const sim::SimFrame f = src.Next();
-      if (f.index == 0) T0 = f.T_world_camera;
-      pipeline::FrameInput in = test::AsInput(f);
-      in.exposure_ms = f.exposure_ms;
-      const auto& r = session.Process(in);
-      est.push_back(r.T_world_camera);
-      truth.push_back(T0.inverse() * f.T_world_camera);
-    }
-    const eval::TrajectoryError te = eval::CompareTrajectories(est, truth);
-    int trace_from = -1, trace_to = -2;
-    if (const char* t = std::getenv("HDRF_RECOVERY_TRACE")) std::sscanf(t, "%d-%d", &trace_from, &trace_to);
-    double max_fused = 0;
-    int said = 0;
-    for (std::size_t i = 0; i < est.size(); ++i) {
-      const auto& r = session.reports()[i];
-      const double e = (est[i].translation() - truth[i].translation()).norm();
-      if (r.fused) max_fused = std::max(max_fused, e);
-      // The first frames fused more than 2 cm off, and every change of state, for the log;
-      // HDRF_RECOVERY_TRACE=A-B prints frames A to B with their motion (for a diagnosis).
-      if (trace_from <= int(i) && int(i) <= trace_to && i > 0) {
-        const Pose dt = truth[i - 1].inverse() * truth[i], de = est[i - 1].inverse() * est[i];
-        std::printf("  trace %zu: %s err %.2f cm, true step %.1f mm %.2f deg, est step %.1f mm %.2f deg, cond %.3g, "
-                    "share %.2f, rms %.2f mm / %.3f, inl %.2f / %.2f\n",
-                    i, pipeline::FrameStateName(r.state), 100 * e, 1e3 * se3::TranslationNorm(dt),
-                    se3::RotationAngle(dt) * 180 / M_PI, 1e3 * se3::TranslationNorm(de),
-                    se3::RotationAngle(de) * 180 / M_PI, r.tracking.condition, r.tracking.inlier_share,
-                    1e3 * r.tracking.rms_icp_m, r.tracking.rms_photo, r.tracking.icp_inliers, r.tracking.photo_inliers);
-      }
-      if ((r.fused && e > 0.02 && said++ < 5) || (i > 0 && r.state != session.reports()[i - 1].state))
-        std::printf("  frame %zu: %s, error %.2f cm, quality %.2f, rms %.2f mm / %.3f %s\n", i,
-                    pipeline::FrameStateName(r.state), 100 * e, r.quality, 1e3 * r.tracking.rms_icp_m,
-                    r.tracking.rms_photo, r.why.c_str());
-    }
-    std::printf("%s: %d frames, %d fused, %d lost, %d confirming, %d relocalisations; ATE RMSE %.2f cm (max %.2f cm) over "
-                "every frame; largest error of a fused pose %.2f cm\n",
-                mode == sim::AeMode::kFlicker ? "flicker" : "smooth", session.frames(), session.fused(), session.lost(),
-                session.count(FrameState::kConfirming), session.relocalisations(), 100 * te.ate_rmse_m,
-                100 * te.ate_max_m, 100 * max_fused);
-    EXPECT_LE(te.ate_rmse_m, 0.05);
+    EXPECT_LE(ScanLong(mode).te.ate_rmse_m, 0.05);
   }
+}
+
+// The smooth sequence in every run of the suite: the camera turns to the window (saturated,
+// no depth) beside the striped wall at frame 455, where until session 22 the pose slid
+// along the wall (791 of 1000 frames fused, ATE 61 cm): every frame is tracked and fused.
+TEST(LongScan, SmoothExposureThousandFramesPastTheWindowAllFused) {
+  const LongRun run = ScanLong(sim::AeMode::kSmooth);
+  EXPECT_EQ(run.fused, run.frames);
+  EXPECT_EQ(run.lost, 0);
+  EXPECT_LE(run.te.ate_rmse_m, 0.02);
+  EXPECT_LE(run.max_fused_m, 0.05);
 }
 
 }  // namespace
