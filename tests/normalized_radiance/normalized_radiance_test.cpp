@@ -21,20 +21,36 @@ using test::Frames;
 using test::Median;
 using test::Metres;
 
-TEST(NormalizedRadiance, IsExposureInvariant) {
-  // One static view at 4 ms and 32 ms (8x apart).
+// One static view of the room at 4 ms and 32 ms (8x apart): colour, radiance, confidence.
+struct TwoExposures {
+  sim::SimFrame a, b;
+  RadianceImage ra, rb;
+  Image<float> ca, cb;
+};
+TwoExposures ViewAt4And32Ms() {
   sim::SimOptions o;
   o.sweep = true;
   o.sweep_exposures_ms = {4, 32};
   o.sweep_repeats = 1;
   sim::SyntheticSource src(o);
-  const sim::SimFrame a = src.Next(), b = src.Next();
+  TwoExposures v;
+  v.a = src.Next();
+  v.b = src.Next();
   const SensorInfo s = src.sensor();
   const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
-  RadianceImage ra, rb;
-  Image<float> ca, cb, ma, mb;
-  radiometry::ConvertFrame(a.color, *s.response, pcf, 1, ra, ca, ma);
-  radiometry::ConvertFrame(b.color, *s.response, pcf, 1, rb, cb, mb);
+  Image<float> ma, mb;
+  radiometry::ConvertFrame(v.a.color, *s.response, pcf, 1, v.ra, v.ca, ma);
+  radiometry::ConvertFrame(v.b.color, *s.response, pcf, 1, v.rb, v.cb, mb);
+  return v;
+}
+
+TEST(NormalizedRadiance, IsExposureInvariant) {
+  // One static view at 4 ms and 32 ms (8x apart).
+  const TwoExposures v = ViewAt4And32Ms();
+  const sim::SimFrame& a = v.a;
+  const sim::SimFrame& b = v.b;
+  const RadianceImage &ra = v.ra, &rb = v.rb;
+  const Image<float> &ca = v.ca, &cb = v.cb;
   const Image<float> na = nr::NormalizedRadiance(nr::Luminance(ra), {});
   const Image<float> nb = nr::NormalizedRadiance(nr::Luminance(rb), {});
   std::vector<double> diff, mag;
@@ -62,18 +78,11 @@ TEST(NormalizedRadiance, IsExposureInvariant) {
 // pixels near them normalize as in the model. Here the model is the 4 ms view without the
 // surfaces the 32 ms view clips (as if they were a window), the live frame the 32 ms view.
 TEST(NormalizedRadiance, ClippedLivePixelsAreLeftOutOfTheStatistics) {
-  sim::SimOptions o;
-  o.sweep = true;
-  o.sweep_exposures_ms = {4, 32};
-  o.sweep_repeats = 1;
-  sim::SyntheticSource src(o);
-  const sim::SimFrame a = src.Next(), b = src.Next();
-  const SensorInfo s = src.sensor();
-  const radiometry::PcfTables pcf = radiometry::ComputePcf(*s.response, *s.noise);
-  RadianceImage ra, rb;
-  Image<float> ca, cb, ma, mb;
-  radiometry::ConvertFrame(a.color, *s.response, pcf, 1, ra, ca, ma);
-  radiometry::ConvertFrame(b.color, *s.response, pcf, 1, rb, cb, mb);
+  const TwoExposures v = ViewAt4And32Ms();
+  const sim::SimFrame& a = v.a;
+  const sim::SimFrame& b = v.b;
+  const RadianceImage &ra = v.ra, &rb = v.rb;
+  const Image<float> &ca = v.ca, &cb = v.cb;
   const int w = ra.width(), h = ra.height();
   Image<float> model = nr::Luminance(ra);
   long clipped = 0;
