@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,6 +61,12 @@ struct FrameImages {
 // The stages of one frame, in the order Pipeline::Process calls them. Each stage reads what
 // the stages before it left in the backend (named under "reads") and replaces what it
 // writes; nothing else carries over between frames except the model and the reference.
+// The clipping level of a reference with none: every model radiance takes part in its
+// normalized radiance's statistics.
+inline constexpr Float3 kNoClip{std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                                std::numeric_limits<float>::infinity()};
+inline bool SameClip(const Float3& a, const Float3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -95,7 +102,8 @@ class Backend {
   // The tracking reference, with the pose it belongs to: the last ray cast (frame to model),
   // or the live pyramid placed at a pose (frame to frame). The ray cast's normalized radiance
   // leaves out model radiance at or above `clip` in any channel (the live frame's clipping
-  // level in model units; infinite: none), where the model keeps no NR of its own.
+  // level in model units; infinite: none), where the model keeps no NR of its own: such a
+  // model's ray cast is normalized here, once per ray cast and clipping level.
   virtual void ReferenceFromRender(const Float3& clip) = 0;
   virtual void ReferenceFromLive(const Pose& T_world_camera) = 0;
   virtual bool HasReference() const = 0;

@@ -102,22 +102,19 @@ class CpuBackend final : public Backend {
   std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
 
   void Raycast(const Pose& T) override {
-    render_ = Render(T);
+    render_ = volume_.Raycast(cam_, T);
     render_pose_ = T;
     has_render_ = true;
+    render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
   }
   bool HasRender() const override { return has_render_; }
 
   void ReferenceFromRender(const Float3& clip) override {
     // The ray cast's vertices and normals are in world coordinates already; the reference
     // carries the pose they were cast from.
-    Image<float> nr = render_.nr.Clone();
-    if (!volume::EncodingStoresNr(o_.volume.encoding) && std::isfinite(clip.x)) {
-      Image<float> lum(cam_.width, cam_.height);
-      nr::ClippedLuminanceOf(par::Host{}, View(render_.radiance), clip, View(lum));
-      nr = nr::NormalizedRadiance(lum, o_.nr);
-    }
-    reference_ = tracking::MakeReference(render_.vertex, render_.normal, nr, cam_, o_.tracker.levels, render_pose_);
+    NormalizeRender(clip);
+    reference_ =
+        tracking::MakeReference(render_.vertex, render_.normal, render_.nr, cam_, o_.tracker.levels, render_pose_);
   }
   bool HasReference() const override { return !reference_.levels.empty(); }
   Pose ReferencePose() const override { return reference_.T_world_camera; }
@@ -153,11 +150,13 @@ class CpuBackend final : public Backend {
         const_cast<std::function<bool(double)>*>(&progress));
   }
   FrameViews DownloadViews() override {
+    if (!render_nr_ready_) NormalizeRender(kNoClip);
     return {radiance_.Clone(), conf_.Clone(), maxconf_.Clone(), nr_.Clone(), depth_.Clone(),
             {render_.vertex.Clone(), render_.normal.Clone(), render_.radiance.Clone(), render_.nr.Clone(),
              render_.depth.Clone()}};
   }
   FrameImages DownloadStages() override {
+    if (!render_nr_ready_) NormalizeRender(kNoClip);
     FrameImages f;
     f.radiance = radiance_.Clone();
     f.confidence = conf_.Clone();
@@ -182,6 +181,18 @@ class CpuBackend final : public Backend {
   }
 
  private:
+  // A model without NR: the ray cast's NR from its radiance, with the radiance at or above
+  // `clip` left out (ReferenceFromRender), once per ray cast and clipping level.
+  void NormalizeRender(const Float3& clip) {
+    if (!has_render_ || volume::EncodingStoresNr(o_.volume.encoding)) return;
+    if (render_nr_ready_ && SameClip(clip, render_nr_clip_)) return;
+    Image<float> lum(cam_.width, cam_.height);
+    nr::ClippedLuminanceOf(par::Host{}, View(render_.radiance), clip, View(lum));
+    render_.nr = nr::NormalizedRadiance(lum, o_.nr);
+    render_nr_ready_ = true;
+    render_nr_clip_ = clip;
+  }
+
   const PipelineOptions o_;
   PinholeCamera cam_;
   ColorImage color_;  // the frame's colour (clipped pixels; the intensity tracker)
@@ -191,6 +202,8 @@ class CpuBackend final : public Backend {
   RadianceImage radiance_;
   Image<float> conf_, maxconf_, nr_, track_image_, track_weight_;
   Image<float> track_conf_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
+  bool render_nr_ready_ = false;  // render_.nr holds the ray cast's NR for render_nr_clip_
+  Float3 render_nr_clip_{};
   DepthImage depth_;
   tracking::Live live_;
   tracking::Reference reference_;

@@ -160,21 +160,18 @@ class CudaBackend final : public Backend {
   }
 
   void Raycast(const Pose& T) override {
-    RaycastInto(render_, T);
+    volume_.Raycast({cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m}, render_.views());
     render_pose_ = T;
     has_render_ = true;
+    render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
   }
   bool HasRender() const override { return has_render_; }
 
   void ReferenceFromRender(const Float3& clip) override {
     CopyD2D(ref_[0]->vertex, render_.vertex);
     CopyD2D(ref_[0]->normal, render_.normal);
-    if (!volume::EncodingStoresNr(o_.volume.encoding) && std::isfinite(clip.x)) {
-      nr::ClippedLuminanceOnGpu(render_.radiance.view(), clip, lum_render_.view());
-      nr::NormalizeOnGpu(lum_render_.view(), nr_scratch_.views(), o_.nr, ref_[0]->intensity.view());
-    } else {
-      CopyD2D(ref_[0]->intensity, render_.nr);
-    }
+    NormalizeRender(clip);
+    CopyD2D(ref_[0]->intensity, render_.nr);
     BuildReferencePyramid();
     reference_pose_ = render_pose_;
     has_reference_ = true;
@@ -213,9 +210,11 @@ class CudaBackend final : public Backend {
   }
 
   FrameViews DownloadViews() override {
+    if (!render_nr_ready_) NormalizeRender(kNoClip);
     return {radiance_.ToHost(), conf_.ToHost(), maxconf_.ToHost(), nr_.ToHost(), depth_.ToHost(), render_.ToHost()};
   }
   FrameImages DownloadStages() override {
+    if (!render_nr_ready_) NormalizeRender(kNoClip);
     FrameImages f;
     f.radiance = radiance_.ToHost();
     f.confidence = conf_.ToHost();
@@ -239,16 +238,23 @@ class CudaBackend final : public Backend {
   }
 
  private:
-  // Luminance of a radiance image, then its NR (the live frame's, or a ray cast's where the
-  // model keeps no NR).
-  void NormalizeRadiance(const DeviceImage<Float3>& radiance, DeviceImage<float>& lum, DeviceImage<float>& out) {
-    nr::LuminanceOnGpu(radiance.view(), lum.view());
-    nr::NormalizeOnGpu(lum.view(), nr_scratch_.views(), o_.nr, out.view());
+  // A model without NR: the NR of a ray cast's radiance, with the radiance at or above `clip`
+  // left out (infinite: none).
+  void NormalizeRadiance(const DeviceImage<Float3>& radiance, const Float3& clip, DeviceImage<float>& out) {
+    nr::ClippedLuminanceOnGpu(radiance.view(), clip, lum_render_.view());
+    nr::NormalizeOnGpu(lum_render_.view(), nr_scratch_.views(), o_.nr, out.view());
   }
   void RaycastInto(RenderD& out, const Pose& T) {
     volume_.Raycast({cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m}, out.views());
-    // A model without NR: the tracker normalizes the ray-cast radiance instead.
-    if (!volume::EncodingStoresNr(o_.volume.encoding)) NormalizeRadiance(out.radiance, lum_render_, out.nr);
+    if (!volume::EncodingStoresNr(o_.volume.encoding)) NormalizeRadiance(out.radiance, kNoClip, out.nr);
+  }
+  // The frame's ray cast's NR (ReferenceFromRender), once per ray cast and clipping level.
+  void NormalizeRender(const Float3& clip) {
+    if (!has_render_ || volume::EncodingStoresNr(o_.volume.encoding)) return;
+    if (render_nr_ready_ && SameClip(clip, render_nr_clip_)) return;
+    NormalizeRadiance(render_.radiance, clip, render_.nr);
+    render_nr_ready_ = true;
+    render_nr_clip_ = clip;
   }
   void BuildReferencePyramid() {
     for (std::size_t l = 1; l < ref_.size(); ++l)
@@ -262,6 +268,8 @@ class CudaBackend final : public Backend {
   DeviceImage<Rgb8> color_;
   DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
   DeviceImage<float> conf_track_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
+  bool render_nr_ready_ = false;  // render_.nr holds the ray cast's NR for render_nr_clip_
+  Float3 render_nr_clip_{};
   DeviceImage<Float3> radiance_;
   NrScratchD nr_scratch_;
   std::vector<std::unique_ptr<LiveLevelD>> live_;

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,8 +14,6 @@
 namespace hdrf::pipeline {
 
 namespace {
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr Float3 kNoClip{kInf, kInf, kInf};
 using Clock = std::chrono::steady_clock;
 double Ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -258,6 +255,11 @@ double Pipeline::PredictedRatio(const FrameInput& in) const {
   return ratio > 0 && std::isfinite(ratio) ? ratio : 0;
 }
 
+void Pipeline::ReferenceFromModel(const Float3& clip) {
+  backend_->ReferenceFromRender(clip);
+  ref_clip_ = clip;
+}
+
 Float3 Pipeline::ReferenceClip(const FrameInput& in) const {
   const double ratio = PredictedRatio(in);
   return ratio > 0 ? live_clip_ * float(ratio) : kNoClip;
@@ -322,8 +324,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // radiance as the live frame's clipped pixels are left out of its own.
   const Float3 clip = reference_from_model_ ? ReferenceClip(in) : kNoClip;
   if (anchored_ && reference_from_model_ && lost_run_ == 0 && b.HasRender() && ClipChanged(ref_clip_, clip)) {
-    b.ReferenceFromRender(clip);
-    ref_clip_ = clip;
+    ReferenceFromModel(clip);
   }
   bool fuse = false, accepted = false, searched = false;
   Verdict verdict;
@@ -368,8 +369,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       bool first = true;
       for (const Pose& start : {carried, pose_}) {
         b.Raycast(start);
-        b.ReferenceFromRender(clip);
-        ref_clip_ = clip;
+        ReferenceFromModel(clip);
         const tracking::TrackResult rc = track(start);
         const Verdict vc = Verify(rc, in, true);
         if (first || (vc.why.empty() && (!verdict.why.empty() || vc.score < verdict.score))) {
@@ -399,8 +399,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const RelocEntry* e = candidates[c];
         b.Raycast(e->T_world_camera);
-        b.ReferenceFromRender(clip);
-        ref_clip_ = clip;
+        ReferenceFromModel(clip);
         std::vector<Pose> starts = {e->T_world_camera};
         if (c == 0) {
           for (int axis = 0; axis < 3; ++axis)
@@ -471,7 +470,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // white), the exposure is the one predicted from the sensor's report or the last frames.
   double t_ratio = 1;
   if (accepted && verdict.exposure.valid) t_ratio = last_ratio_ = verdict.exposure.ratio;
-  else if (accepted && PredictedRatio(in) > 0) t_ratio = PredictedRatio(in);
+  else if (const double predicted = PredictedRatio(in); accepted && predicted > 0) t_ratio = predicted;
   rep.exposure_samples = verdict.exposure.samples;
   rep.exposure_ratio = t_ratio;
   if (in.exposure_ms && first_exposure_ms_) rep.exposure_ratio_reported = *first_exposure_ms_ / *in.exposure_ms;
@@ -499,8 +498,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // to model) or this frame where its pose was accepted (frame to frame).
   if (rep.fused || accepted || searched || !b.HasRender()) b.Raycast(pose_);
   if (reference_from_model_) {
-    b.ReferenceFromRender(clip);
-    ref_clip_ = clip;
+    ReferenceFromModel(clip);
   } else if (accepted || !b.HasReference()) {
     b.ReferenceFromLive(pose_);
     reference_color_ = in.color.Clone();

@@ -186,6 +186,7 @@ class Pipeline {
   Float3 ref_clip_{};
   double PredictedRatio(const FrameInput& in) const;  // model / live radiance before tracking (0: unknown)
   Float3 ReferenceClip(const FrameInput& in) const;   // the live frame's clipping level, model units
+  void ReferenceFromModel(const Float3& clip);         // the reference from the ray cast, for `clip`
 
   struct Verdict {
     std::string why;  // empty: verified
