@@ -64,6 +64,10 @@ Command AddExportCommand(CLI::App& app) {
   cmd->add_option("--texel-mm", a->texel_mm, "Texture density: millimetres of surface per texel")->capture_default_str();
   cmd->add_option("--texture-size", a->o.atlas.fit_size, "Instead of --texel-mm: the density that fits an N x N texture");
   cmd->add_option("--padding", a->o.atlas.padding, "Texels of margin around every chart")->capture_default_str();
+  cmd->add_option("--sample-sigma", a->o.bake.sample_sigma_px,
+                  "Texture from the frames: each pixel weighted by a Gaussian of its distance to the texel (pixels); "
+                  "smaller is sharper and noisier, 0 interpolates each frame bilinearly")
+      ->capture_default_str();
   cmd->add_flag("--no-texture", a->no_texture, "No atlas or texture (PLY only, with per-vertex radiance)");
   cmd->add_option("--render", a->render, "Also render the textured mesh at WxH (render.exr with alpha and depth, render.png)");
   cmd->add_option("--render-frame", a->o.render_frame, "The scan frame whose pose the render takes")->capture_default_str();

@@ -344,7 +344,8 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
                          {"padding", atlas->padding}, {"textured_vertices", atlas->mesh.position.size()},
                          {"keyframes", scan.keyframes ? scan.keyframes->keyframes.size() : 0},
                          {"surface_texels", baked->surface_texels}, {"texels_from_frames", baked->from_frames},
-                         {"texels_from_volume", baked->from_volume}, {"mean_frames_per_texel", baked->mean_views}};
+                         {"texels_from_volume", baked->from_volume}, {"mean_frames_per_texel", baked->mean_views},
+                         {"sample_sigma_px", o.bake.sample_sigma_px}};
   if (o.render_width > 0) report["render"] = {{"width", o.render_width}, {"height", o.render_height}, {"frame", o.render_frame}};
   files.push_back("export.json");
   report["files"] = files;

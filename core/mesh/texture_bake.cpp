@@ -14,6 +14,8 @@ void BakeOptions::Check() const {
   if (!(min_cos > 0 && min_cos < 1)) throw SettingError("min_cos", "must be in (0, 1), got " + std::to_string(min_cos));
   if (!(occlusion_tolerance > 0 && occlusion_tolerance < 0.5f))
     throw SettingError("occlusion tolerance", "must be in (0, 0.5) m, got " + std::to_string(occlusion_tolerance));
+  if (!(sample_sigma_px >= 0 && sample_sigma_px <= 2))
+    throw SettingError("sample sigma", "must be 0 (bilinear) to 2 pixels, got " + std::to_string(sample_sigma_px));
   if (edge_margin_px < 0 || edge_margin_px > 16)
     throw SettingError("edge margin", "must be 0 to 16 pixels, got " + std::to_string(edge_margin_px));
 }
@@ -136,6 +138,7 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
   // 3. Every surface texel from the views that see it.
   const bool has_normals = m.normal.size() == m.position.size();
   const bool has_radiance = m.radiance.size() == m.position.size();
+  const float kernel = o.sample_sigma_px > 0 ? -0.5f / (o.sample_sigma_px * o.sample_sigma_px) : 0.0f;
   const auto sample = [&](Float3 p, Float3 n, const std::vector<int>& cand, Float3& sum, float& wsum, int& count) {
     for (int k : cand) {
       const ViewData& d = vd[std::size_t(k)];
@@ -163,19 +166,23 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
           }
         }
       if (!visible) continue;
-      // Bilinear radiance where all four pixels are usable.
+      // The four pixels around the point, each weighted by how near its centre is (a
+      // Gaussian of the distance in pixels): with several frames sampling the surface at
+      // different sub-pixel offsets, each texel leans on the samples taken nearest to it,
+      // which keeps edges sharper than averaging every frame's bilinear interpolation.
       const int x0 = int(px.x), y0 = int(px.y);
-      const float ax = px.x - float(x0), ay = px.y - float(y0);
       const Image<float>& conf = d.view->confidence;
-      const float c00 = conf(x0, y0), c10 = conf(x0 + 1, y0), c01 = conf(x0, y0 + 1), c11 = conf(x0 + 1, y0 + 1);
-      if (c00 <= 0 || c10 <= 0 || c01 <= 0 || c11 <= 0) continue;
+      if (conf(x0, y0) <= 0 || conf(x0 + 1, y0) <= 0 || conf(x0, y0 + 1) <= 0 || conf(x0 + 1, y0 + 1) <= 0) continue;
       const RadianceImage& L = d.view->radiance;
-      const Float3 value = (L(x0, y0) * (1 - ax) + L(x0 + 1, y0) * ax) * (1 - ay) +
-                           (L(x0, y0 + 1) * (1 - ax) + L(x0 + 1, y0 + 1) * ax) * ay;
-      const float confidence = (c00 * (1 - ax) + c10 * ax) * (1 - ay) + (c01 * (1 - ax) + c11 * ax) * ay;
-      const float w = confidence * cosv * cosv / (pc.z * pc.z);
-      sum += value * w;
-      wsum += w;
+      const float w = cosv * cosv / (pc.z * pc.z);
+      for (int yy = y0; yy <= y0 + 1; ++yy)
+        for (int xx = x0; xx <= x0 + 1; ++xx) {
+          const float dx = px.x - float(xx), dy = px.y - float(yy);
+          const float g = (kernel < 0 ? std::exp(kernel * (dx * dx + dy * dy)) : (1 - std::fabs(dx)) * (1 - std::fabs(dy))) *
+                          conf(xx, yy) * w;
+          sum += L(xx, yy) * g;
+          wsum += g;
+        }
       ++count;
     }
   };

@@ -1,9 +1,9 @@
 // HDR texture baking from the fused frames, and renders of the textured mesh.
 //
 // Every texel of the atlas is a point on the surface. Its radiance is the weighted mean of
-// the frames that saw it: each frame's radiance already in the model's exposure, weighted
-// by the pixel's confidence, the viewing angle (cos^2) and the distance (1 / z^2), and
-// only where the point is the nearest surface along the pixel's ray -- checked against a
+// the frames' pixels around it (those nearest it weigh most): each frame's radiance already
+// in the model's exposure, weighted by the pixel's confidence, the viewing angle (cos^2)
+// and the distance (1 / z^2), and only where the point is the nearest surface along the pixel's ray -- checked against a
 // depth buffer of the mesh itself, away from its depth edges. Texels no frame saw take the
 // volume's radiance (the mesh's vertex radiance, interpolated) and are counted apart.
 #pragma once
@@ -30,6 +30,10 @@ struct BakeOptions {
   float min_cos = 0.25f;            // views more grazing than ~75 degrees are not used
   float occlusion_tolerance = 0.015f;  // metres (plus 1 % of the depth) behind the depth buffer
   int edge_margin_px = 2;           // pixels this close to a depth edge or the border are not used
+  // Each frame's four pixels around a texel are weighted by a Gaussian of their distance
+  // (this sigma, pixels) across all frames at once, so that the frames' samples nearest a
+  // texel decide it; 0 = each frame interpolated bilinearly, then averaged (softer).
+  float sample_sigma_px = 0.35f;
   void Check() const;               // throws SettingError naming the option
 };
 

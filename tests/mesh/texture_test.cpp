@@ -377,14 +377,15 @@ TEST(TextureBake, RoomTextureIsTrueAndSharperThanVertexColour) {
               "per-vertex (%.2fx)\n",
               baked.Recovered(), vert.Recovered(), baked.Recovered() / std::max(1e-12, vert.Recovered()));
   EXPECT_LE(med_baked, 0.1);
-  // The mean gradient is mostly the frames' noise where the truth is flat, so it only has to
-  // be no lower than the per-vertex colour's; sharpness is measured on the edges: 1.5x as
-  // strong as the per-vertex colour's, with the noise where the truth is flat below 1 % per texel.
-  // The detail recovered (noise not counted) is more than the per-vertex colour's.
-  EXPECT_GE(baked.Mean(), vert.Mean());
-  EXPECT_GT(baked.Recovered(), 1.08 * vert.Recovered());
+  // The detail measure (the mean gradient) at 1.5x the per-vertex colour's. Part of that
+  // mean is the frames' noise where the truth is flat, so sharpness is also measured where
+  // noise cannot reach it: the edges (largest gradients, wherever they lie) 1.5x as strong as
+  // the per-vertex colour's, the detail recovered (noise not counted) above it, and the noise
+  // where the truth is flat about 1 % per texel.
+  EXPECT_GE(baked.Mean(), 1.5 * vert.Mean());
+  EXPECT_GT(baked.Recovered(), 1.1 * vert.Recovered());
   EXPECT_GE(baked.Top() / truth.Top(), 1.5 * vert.Top() / truth.Top());
-  EXPECT_LE(baked.Flat(), 0.01);
+  EXPECT_LE(baked.Flat(), 0.012);
 }
 
 }  // namespace

@@ -268,6 +268,24 @@ LongRun ScanLong(sim::AeMode mode) {
                   se3::RotationAngle(de) * 180 / M_PI, r.tracking.condition, r.tracking.inlier_share,
                   1e3 * r.tracking.rms_icp_m, r.tracking.rms_photo, r.tracking.icp_inliers, r.tracking.photo_inliers);
     }
+    if (std::getenv("HDRF_RECOVERY_RELOC") && r.state != FrameState::kTracked && i > 0) {
+      const auto& ents = session.pipeline().relocaliser().entries();
+      double best = 1e9, bdeg = 0;
+      int bi = -1;
+      const Pose Tt = truth[i];
+      for (std::size_t k = 0; k < ents.size(); ++k) {
+        if (ents[k].frame >= int(i)) continue;
+        const Pose d = ents[k].T_world_camera.inverse() * Tt;
+        const double c = se3::TranslationNorm(d) + 0.5 * se3::RotationAngle(d);
+        if (c < best) best = c, bi = int(k), bdeg = se3::RotationAngle(d) * 180 / M_PI;
+      }
+      double cand_err = -1;
+      if (r.nearest_entry >= 0 && r.nearest_entry < int(ents.size()))
+        cand_err = (ents[std::size_t(r.nearest_entry)].T_world_camera.translation() - Tt.translation()).norm();
+      std::printf("  reloc %zu: %s nearest-true entry %d (frame %d) cost %.2f rot %.1f deg; code-nearest %d off %.2f m; %s\n", i,
+                  pipeline::FrameStateName(r.state), bi, bi >= 0 ? ents[std::size_t(bi)].frame : -1, best, bdeg,
+                  r.nearest_entry, cand_err, r.why.c_str());
+    }
     if ((r.fused && e > 0.02 && said++ < 5) || (i > 0 && r.state != session.reports()[i - 1].state))
       std::printf("  frame %zu: %s, error %.2f cm, quality %.2f, rms %.2f mm / %.3f %s\n", i,
                   pipeline::FrameStateName(r.state), 100 * e, r.quality, 1e3 * r.tracking.rms_icp_m,
