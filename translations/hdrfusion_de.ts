@@ -988,6 +988,18 @@
         <source>Raise for a camera swung or carried faster than this</source>
         <translation>Erhöhen für eine Kamera, die schneller geschwenkt oder getragen wird</translation>
     </message>
+    <message>
+        <source>Weak-direction hold</source>
+        <translation>Halt schwacher Richtungen</translation>
+    </message>
+    <message>
+        <source>Along directions the pixels fix less than this share of the best-fixed one, the motion prediction holds the pose (0: off)</source>
+        <translation>In Richtungen, die die Pixel schwächer als diesen Anteil der am besten bestimmten festlegen, hält die Bewegungsvorhersage die Pose (0: aus)</translation>
+    </message>
+    <message>
+        <source>Raise if poses slide along flat walls; lower if smooth but quick moves are tracked late</source>
+        <translation>Erhöhen, wenn Posen an ebenen Wänden entlanggleiten; senken, wenn ruhige, aber schnelle Bewegungen verspätet verfolgt werden</translation>
+    </message>
 </context>
 <context>
     <name>ToneMapping</name>

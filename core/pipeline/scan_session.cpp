@@ -52,8 +52,10 @@ int ScanSession::fused() const {
 
 int ScanSession::relocalisations() const {
   int n = 0;
-  for (std::size_t i = 1; i < reports_.size(); ++i)
-    n += reports_[i].state == FrameState::kRelocalised && reports_[i - 1].state == FrameState::kLost;
+  // A run of relocalised frames is one relocalisation, whether the frame before it was lost
+  // or its own tracking failed and an earlier view found the pose.
+  for (std::size_t i = 0; i < reports_.size(); ++i)
+    n += reports_[i].state == FrameState::kRelocalised && (i == 0 || reports_[i - 1].state != FrameState::kRelocalised);
   return n;
 }
 

@@ -167,6 +167,7 @@ constexpr Words kWords[] = {
     {"tracker.icp_max_angle_deg", "Largest normal difference", "Raise for noisy normals"},
     {"tracker.min_inlier_share", "Least matched share", "Lower for scenes with little overlap between frames; raise to refuse doubtful frames"},
     {"tracker.max_condition", "Worst conditioning", "Lower to refuse frames of flat walls that cannot fix every direction"},
+    {"tracker.weak_info_floor", "Weak-direction hold", "Raise if poses slide along flat walls; lower if smooth but quick moves are tracked late"},
     {"tracker.max_jump_m", "Largest jump", "Raise for a fast hand-held camera"},
     {"tracker.max_jump_deg", "Largest turn", "Raise for a fast turning camera"},
     {"tracker.max_speed_mps", "Largest speed", "Raise for a camera swung or carried faster than this"},
@@ -324,6 +325,10 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Expert(Real("tracker.max_condition", 1.0001, kBig, "",
                           "A frame whose system is worse conditioned is lost",
                           HDRF_FIELD(tracker.max_condition))));
+  v.push_back(Expert(Real("tracker.weak_info_floor", 0, 0.999, "",
+                          "Along directions the pixels fix less than this share of the best-fixed one, the "
+                          "motion prediction holds the pose (0: off)",
+                          HDRF_FIELD(tracker.weak_info_floor))));
   v.push_back(Real("tracker.max_jump_m", 1e-4, 100, "m",
                    "A frame moving farther from its prediction is lost",
                    HDRF_FIELD(tracker.max_jump_m)));

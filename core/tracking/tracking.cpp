@@ -44,6 +44,7 @@ void TrackerOptions::Check() const {
   if (!(min_inlier_share >= 0 && min_inlier_share <= 1))
     throw SettingError("tracker.min_inlier_share", "must be in [0, 1]");
   if (!(max_condition > 1)) throw SettingError("tracker.max_condition", "must be > 1");
+  if (!(weak_info_floor >= 0 && weak_info_floor < 1)) throw SettingError("tracker.weak_info_floor", "must be in [0, 1)");
   if (!(max_jump_m > 0)) throw SettingError("tracker.max_jump_m", "must be > 0");
   if (!(max_speed_mps > 0)) throw SettingError("tracker.max_speed_mps", "must be > 0");
   if (!(max_jump_deg > 0 && max_jump_deg <= 180)) throw SettingError("tracker.max_jump_deg", "must be in (0, 180]");
@@ -223,6 +224,30 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
       }
       if (prior) {
         const Vec6 e = se3::Log(prior->T_world_camera.inverse() * T);
+        // Directions the pixel terms fix far more weakly than their strongest one: the prior
+        // raised along them to the floor (whitened by the prior's deviations, so that metres
+        // and radians compare), pulling the pose to the prediction there.
+        // A prediction over several frame intervals (frames dropped) holds less: the floor
+        // falls with the square of the intervals, as the prior's variance grows.
+        const double floor = o.weak_info_floor / (spans * spans);
+        if (floor > 0) {
+          Vec6d sw, ew;
+          for (int i = 0; i < 6; ++i) {
+            sw(i) = i < 3 ? sigma_m : sigma_rad;
+            ew(i) = e(i) / sw(i);
+          }
+          const Mat6 Hw = sw.asDiagonal() * H * sw.asDiagonal();
+          const Eigen::SelfAdjointEigenSolver<Mat6> es(Hw);
+          const double top = es.eigenvalues()(5);
+          for (int k = 0; k < 6; ++k) {
+            const double add = floor * top - es.eigenvalues()(k);
+            if (!(add > 0)) continue;
+            const Vec6d v = es.eigenvectors().col(k);
+            const Vec6d u = v.cwiseQuotient(sw);  // S^-1 v
+            H += add * u * u.transpose();
+            g += add * u * v.dot(ew);
+          }
+        }
         for (int i = 0; i < 6; ++i) {
           const double lambda = 1.0 / (i < 3 ? sigma_m * sigma_m : sigma_rad * sigma_rad);
           H(i, i) += lambda;
@@ -260,6 +285,20 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
   Eigen::SelfAdjointEigenSolver<Mat6> es(H_last);
   const double lo = es.eigenvalues().minCoeff(), hi = es.eigenvalues().maxCoeff();
   res.condition = lo > 0 ? hi / lo : 1e30;
+  {
+    Vec6d sw;
+    sw << kMotionSigmaM, kMotionSigmaM, kMotionSigmaM, kMotionSigmaRad, kMotionSigmaRad, kMotionSigmaRad;
+    const Mat6 Hw = sw.asDiagonal() * H_last * sw.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Mat6> ew(Hw);
+    res.weakest_info = ew.eigenvalues()(0);
+    res.strongest_info = ew.eigenvalues()(5);
+    if (prior) {
+      const Vec6 e = se3::Log(prior->T_world_camera.inverse() * T);
+      Vec6d ew6;
+      for (int i = 0; i < 6; ++i) ew6(i) = e(i) / sw(i);
+      res.weak_offset = ew.eigenvectors().col(0).dot(ew6);
+    }
+  }
   const Pose delta = initial.inverse() * T;
   if (res.iterations == 0 || matched < 50) {
     res.lost = true;

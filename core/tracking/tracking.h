@@ -47,6 +47,11 @@ struct TrackerOptions {
   // correspondence, the system is this ill-conditioned, or the pose jumps this far.
   float min_inlier_share = 0.2f;
   double max_condition = 1e8;
+  // Directions the pixel terms hardly fix (a flat wall slid along, a view mostly clipped)
+  // are held to the motion prior: along any direction whose information (in units of the
+  // prior's 1 cm and 1 degree) is under this share of the strongest direction's, the prior
+  // is raised to make up the difference. 0 turns it off.
+  double weak_info_floor = 1e-3;
   float max_jump_m = 0.25f, max_jump_deg = 25.f;
   // Fastest a hand-held camera moves (pipeline verification: a pose farther from the last
   // accepted one than this speed over the time between them, plus 2 cm, is not fused).
@@ -126,6 +131,10 @@ struct TrackResult {
   double prior_sigmas = 0;
   double prior_offset_m = 0, prior_offset_rad = 0;
   double condition = 0;        // of J^T J at the finest level
+  // The pixel terms' information at the finest level along their weakest direction, in
+  // units of (1 cm, 1 degree) (whitened J^T J's smallest eigenvalue), and the largest.
+  double weakest_info = 0, strongest_info = 0;
+  double weak_offset = 0;      // the pose's offset from the prediction along that direction (whitened)
   int iterations = 0;
   bool lost = false;
   std::string why;             // why it was judged lost

@@ -376,7 +376,7 @@ TEST(GpuStreaming, AHallAtOneCentimetreInTwoGigabytes) {
     double budget_mb;
     std::size_t budget = 0, most_on_gpu = 0, bricks = 0;
     long lost = 0, out = 0, in = 0;
-    double ate_max = 0;
+    double ate_max = 0, worst_step = 0, path_m = 0;  // worst growth of the error between fused frames
     bool full = false;
     eval::ModelError e;
   };
@@ -388,13 +388,21 @@ TEST(GpuStreaming, AHallAtOneCentimetreInTwoGigabytes) {
     Pipeline p(o, s.camera, s);
     r.budget = o.volume.gpu_bricks();
     const Pose T0inv = T0.inverse();
+    double last_err = -1;
     for (int k = 0; k < n; ++k) {
       const FrameReport rep = p.Process(frames[std::size_t(k)]);
       r.lost += rep.state == FrameState::kLost;
       r.most_on_gpu = std::max(r.most_on_gpu, p.volume_stats().streaming.gpu_bricks);
       const Pose truth = T0inv * *frames[std::size_t(k)].T_world_camera_true;
       const double err = (truth.translation() - rep.T_world_camera.translation()).norm();
-      if (rep.fused) r.ate_max = std::max(r.ate_max, err);
+      if (rep.fused) {
+        r.ate_max = std::max(r.ate_max, err);
+        if (last_err >= 0) r.worst_step = std::max(r.worst_step, err - last_err);
+        last_err = err;
+      }
+      if (k > 0)
+        r.path_m += (frames[std::size_t(k)].T_world_camera_true->translation() -
+                     frames[std::size_t(k - 1)].T_world_camera_true->translation()).norm();
       if (std::getenv("HDRF_HALL_TRACE") && (k % 10 == 0 || err > 0.05))
         std::printf("  %s frame %d: %s, error %.2f cm, quality %.2f, icp rms %.2f mm, inliers %.2f %s\n", r.name, k,
                     rep.fused ? "fused" : "not fused", 100 * err, rep.quality, 1e3 * rep.tracking.rms_icp_m,
@@ -407,10 +415,12 @@ TEST(GpuStreaming, AHallAtOneCentimetreInTwoGigabytes) {
     r.e = eval::CompareModel(p.ExtractMesh(), scene, T0);
     const double brick_mib = double(o.volume.brick_bytes()) / (1024.0 * 1024.0);
     std::printf("hall, %d frames, 1 cm, %s: %zu bricks (%.0f MiB of voxels), at most %zu on the GPU (budget %zu); "
-                "%ld moved out, %ld back; %ld lost; largest error of a fused pose %.2f cm; mesh %zu vertices, median "
+                "%ld moved out, %ld back; %ld lost; largest error of a fused pose %.2f cm (%.2f %% of the %.1f m walked), "
+                "its largest growth from one fused frame to the next %.2f cm; mesh %zu vertices, median "
                 "distance to the true surface %.2f mm%s\n",
                 n, r.name, r.bricks, double(r.bricks) * brick_mib, r.most_on_gpu, r.budget, r.out, r.in, r.lost,
-                100 * r.ate_max, r.e.vertices, 1e3 * r.e.mesh_median_distance_m,
+                100 * r.ate_max, 100 * r.ate_max / std::max(1e-9, r.path_m), r.path_m, 100 * r.worst_step,
+                r.e.vertices, 1e3 * r.e.mesh_median_distance_m,
                 r.full ? " (volume full)" : "");
   };
   Run free{"no GPU budget", 0}, two{"2 GiB GPU budget", 2048};
@@ -433,12 +443,11 @@ TEST(GpuStreaming, AHallAtOneCentimetreInTwoGigabytes) {
   EXPECT_FALSE(free.full);
   EXPECT_GT(tight.out, 0);
   EXPECT_GT(tight.in, 0);
-  // Not asserted, reported: the tracking itself. On this walk at 1 cm the pose slides away
-  // along a wall after 450 (320x240) or 910 (640x480) frames and the slid poses are fused
-  // (docs/engine.md, "Room scale"); the streaming above is judged against the same run
-  // without a budget, which slides the same way.
-  if (free.ate_max > 0.05)
-    std::printf("NOT MET: the budget-free run's largest error of a fused pose is %.2f cm (goal 5 cm)\n", 100 * free.ate_max);
+  // The tracking itself: no slide (until session 23 the pose slid along a wall from frame
+  // 450 at 320x240 or 910 at 640x480, 1-17 cm a frame, and was fused), and the drift of a
+  // walk with no loop closed under 1 % of the distance walked.
+  EXPECT_LE(free.worst_step, 0.01);
+  EXPECT_LE(free.ate_max, 0.01 * free.path_m);
 }
 
 }  // namespace

@@ -232,6 +232,7 @@ LongRun ScanLong(sim::AeMode mode) {
   const char* name = mode == sim::AeMode::kFlicker ? "flicker" : "smooth";
   sim::SimOptions so;
   so.frames = 1000;
+  if (const char* n = std::getenv("HDRF_RECOVERY_FRAMES")) so.frames = std::max(10, std::atoi(n));
   so.ae.mode = mode;
   sim::SyntheticSource src(so);
   pipeline::PipelineOptions o;
@@ -262,11 +263,12 @@ LongRun ScanLong(sim::AeMode mode) {
     if (trace_from <= int(i) && int(i) <= trace_to && i > 0) {
       const Pose dt = truth[i - 1].inverse() * truth[i], de = est[i - 1].inverse() * est[i];
       std::printf("  trace %zu: %s err %.2f cm, true step %.1f mm %.2f deg, est step %.1f mm %.2f deg, cond %.3g, "
-                  "share %.2f, rms %.2f mm / %.3f, inl %.2f / %.2f\n",
+                  "share %.2f, rms %.2f mm / %.3f, inl %.2f / %.2f, info %.3g..%.3g weak off %.2f, prior %.2f sig\n",
                   i, pipeline::FrameStateName(r.state), 100 * e, 1e3 * se3::TranslationNorm(dt),
                   se3::RotationAngle(dt) * 180 / M_PI, 1e3 * se3::TranslationNorm(de),
                   se3::RotationAngle(de) * 180 / M_PI, r.tracking.condition, r.tracking.inlier_share,
-                  1e3 * r.tracking.rms_icp_m, r.tracking.rms_photo, r.tracking.icp_inliers, r.tracking.photo_inliers);
+                  1e3 * r.tracking.rms_icp_m, r.tracking.rms_photo, r.tracking.icp_inliers, r.tracking.photo_inliers, r.tracking.weakest_info,
+                  r.tracking.strongest_info, r.tracking.weak_offset, r.tracking.prior_sigmas);
     }
     if (std::getenv("HDRF_RECOVERY_RELOC") && r.state != FrameState::kTracked && i > 0) {
       const auto& ents = session.pipeline().relocaliser().entries();
@@ -301,27 +303,27 @@ LongRun ScanLong(sim::AeMode mode) {
   return run;
 }
 
-// Both sequences, against the goal (ATE 5 cm over every frame). Minutes on two CPU cores,
-// and the flicker one does not meet it yet: run with HDRF_RECOVERY_LONG=1 (on the GPU
-// machine with HDRF_TEST_DEVICE=cuda; HDRF_RECOVERY_MODE=flicker|smooth runs one).
-TEST(RecoveryLong, ThousandFramesEveryFrameCounted) {
-  if (!std::getenv("HDRF_RECOVERY_LONG")) GTEST_SKIP() << "set HDRF_RECOVERY_LONG=1 to run the 1000-frame scans";
-  for (auto mode : {sim::AeMode::kFlicker, sim::AeMode::kSmooth}) {
-    if (const char* only = std::getenv("HDRF_RECOVERY_MODE");
-        only && std::string(only) != (mode == sim::AeMode::kFlicker ? "flicker" : "smooth"))
-      continue;
-    EXPECT_LE(ScanLong(mode).te.ate_rmse_m, 0.05);
-  }
-}
-
-// The smooth sequence in every run of the suite: the camera turns to the window (saturated,
-// no depth) beside the striped wall at frame 455, where until session 22 the pose slid
-// along the wall (791 of 1000 frames fused, ATE 61 cm): every frame is tracked and fused.
+// The 1000-frame sequences in every run of the suite (on the GPU machine with
+// HDRF_TEST_DEVICE=cuda; HDRF_RECOVERY_TRACE=A-B prints frames A to B, HDRF_RECOVERY_RELOC=1
+// each frame not tracked with the entries near it, HDRF_RECOVERY_FRAMES=N runs the first N).
+// Smooth: the camera turns to the window (saturated, no depth) beside the striped wall at
+// frame 455, where until session 22 the pose slid along the wall (791 of 1000 frames fused,
+// ATE 61 cm): every frame is tracked and fused.
 TEST(LongScan, SmoothExposureThousandFramesPastTheWindowAllFused) {
   const LongRun run = ScanLong(sim::AeMode::kSmooth);
   EXPECT_EQ(run.fused, run.frames);
   EXPECT_EQ(run.lost, 0);
   EXPECT_LE(run.te.ate_rmse_m, 0.02);
+  EXPECT_LE(run.max_fused_m, 0.05);
+}
+
+// Flicker (exposures 3-96 ms at random): from frame 458 most frames are nearly all white;
+// until session 23 the pose slid slowly along the wall there, was lost from frame 489 and
+// never found again (468 fused, ATE 106 cm). The goal: ATE over every frame at most 5 cm.
+TEST(LongScan, FlickerExposureThousandFramesTrackedThroughout) {
+  const LongRun run = ScanLong(sim::AeMode::kFlicker);
+  EXPECT_LE(run.te.ate_rmse_m, 0.05);
+  EXPECT_GE(run.fused, run.frames * 95 / 100);
   EXPECT_LE(run.max_fused_m, 0.05);
 }
 
