@@ -59,6 +59,24 @@ TEST(Tracking, FollowsTheCameraThroughFourfoldExposureJumps) {
 namespace hdrf::tracking {
 namespace {
 
+// Normal equations of a view whose truth is the identity pose: five directions fixed with
+// weight `strong`, and x with weight `weak` by a term biased `bias` metres.
+Accumulator OneWeakDirection(double strong, double weak, double bias) {
+  return [=](int, const Pose& T) {
+    const Vec6 e = se3::Log(T);
+    GnSystem acc;
+    for (int i = 0; i < 6; ++i) {
+      double J[6] = {0, 0, 0, 0, 0, 0};
+      J[i] = 1;
+      if (i == 0) acc.Add(J, e(0) - bias, weak);
+      else acc.Add(J, e(i), strong);
+    }
+    acc.icp_n() = 1000;
+    acc.icp_w() = 1000;
+    return acc;
+  };
+}
+
 // The motion prior: a view that constrains five directions of the pose strongly and one
 // (x: along a flat, untextured wall) only through a weak, biased term. Without the prior the
 // pose slides 5 cm along x to that term's minimum; with it the pose keeps to the prediction
@@ -66,19 +84,7 @@ namespace {
 // where the prediction was 2 cm off along z.
 TEST(TrackPrior, HoldsTheLooseDirectionAndLeavesTheConstrainedOnes) {
   const double kStrong = 1e8, kWeak = 1e3, kBias = 0.05;
-  const Accumulator accumulate = [&](int, const Pose& T) {
-    const Vec6 e = se3::Log(T);  // the truth is the identity
-    GnSystem acc;
-    for (int i = 0; i < 6; ++i) {
-      double J[6] = {0, 0, 0, 0, 0, 0};
-      J[i] = 1;
-      if (i == 0) acc.Add(J, e(0) - kBias, kWeak);
-      else acc.Add(J, e(i), kStrong);
-    }
-    acc.icp_n() = 1000;
-    acc.icp_w() = 1000;
-    return acc;
-  };
+  const Accumulator accumulate = OneWeakDirection(kStrong, kWeak, kBias);
   TrackerOptions o;
   o.max_jump_m = 1;
   Pose predicted = Pose::Identity();
@@ -109,19 +115,7 @@ TEST(TrackPrior, HoldsTheLooseDirectionAndLeavesTheConstrainedOnes) {
 // strongly fixed directions still go where the data put them.
 TEST(TrackPrior, WeakDirectionOfAStrongViewIsHeldToThePrediction) {
   const double kStrong = 1e10, kWeak = 1e6, kBias = 0.05;
-  const Accumulator accumulate = [&](int, const Pose& T) {
-    const Vec6 e = se3::Log(T);  // the truth is the identity
-    GnSystem acc;
-    for (int i = 0; i < 6; ++i) {
-      double J[6] = {0, 0, 0, 0, 0, 0};
-      J[i] = 1;
-      if (i == 0) acc.Add(J, e(0) - kBias, kWeak);
-      else acc.Add(J, e(i), kStrong);
-    }
-    acc.icp_n() = 1000;
-    acc.icp_w() = 1000;
-    return acc;
-  };
+  const Accumulator accumulate = OneWeakDirection(kStrong, kWeak, kBias);
   Pose predicted = Pose::Identity();
   predicted.translation() = Vec3(0, 0, 0.02);
   const MotionPrior prior{predicted, 1};
