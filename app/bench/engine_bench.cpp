@@ -3,6 +3,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <utility>
+#include <vector>
+#include <algorithm>
 
 #include "pipeline/scan_session.h"
 #include "pipeline/frame_source.h"
@@ -53,12 +57,18 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
           se += (truth.translation() - r.T_world_camera.translation()).squaredNorm();
           if (int(i) >= kWarmup) row.ms += r.ms;
         }
+        std::array<double, 4> level_iterations{};
+        for (std::size_t i = kWarmup; i < frames.size(); ++i)
+          for (std::size_t l = 0; l < 4; ++l)
+            level_iterations[l] += session.reports()[i].tracking.level_iterations[l] / double(o.frames);
         row.lost = session.lost();
         const double n = o.frames;
         row.ms = row.ms / n;
         row.wall_ms = wall / n;
         row.fps = 1000.0 / row.wall_ms;
         row.visible_bricks = visible / n;
+        row.bytes = StageFloorBytes(c.width, c.height, level_iterations, row.visible_bricks, double(po.volume.brick_bytes()));
+        row.bandwidth = dev == Device::kCuda ? CudaCopyBandwidth() : CpuCopyBandwidth();
         const VolumeStats vs = pipe.volume_stats();
         row.bricks = vs.allocated_bricks;
         const double bytes = double(vs.bytes);
@@ -93,6 +103,63 @@ std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows) {
                   r.device == Device::kCuda ? std::to_string(int(std::lround(r.gpu_mib))).c_str() : "-", r.ate_cm,
                   r.mesh_ms, r.triangles);
     out += line;
+  }
+  return out;
+}
+
+StageTimes StageFloorBytes(int width, int height, const std::array<double, 4>& level_iterations,
+                           double visible_bricks, double brick_bytes) {
+  const double px = double(width) * double(height);
+  StageTimes b;
+  b.convert = 27 * px;
+  b.normalize = 16 * px;
+  double pyramid = 0;
+  for (std::size_t l = 0; l < 4; ++l) {
+    const double level_px = double(width >> l) * double(height >> l);
+    b.track += 68 * level_px * level_iterations[l];
+    if (level_iterations[l] > 0 || l == 0) pyramid += level_px;
+  }
+  b.track += 40 * pyramid;
+  b.integrate = 2 * visible_bricks * brick_bytes + 20 * px;
+  b.raycast = visible_bricks * brick_bytes + 36 * px;
+  return b;
+}
+
+double CpuCopyBandwidth() {
+  constexpr std::size_t kBytes = 256ull << 20;
+  std::vector<char> a(kBytes, 1), b(kBytes, 0);
+  double best = 0;
+  for (int k = 0; k < 4; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int chunks = 64;
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < chunks; ++c) {
+      const std::size_t lo = kBytes / chunks * std::size_t(c);
+      std::memcpy(b.data() + lo, a.data() + lo, kBytes / chunks);
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (k > 0 && s > 0) best = std::max(best, 2.0 * double(kBytes) / s);  // the first warms up
+  }
+  return best;
+}
+
+std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
+  std::string out =
+      "| device | voxel | size | copy GB/s | stage | ms | least MB moved | floor ms | x floor |\n"
+      "|---|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const auto& r : rows) {
+    const std::pair<const char*, double> stages[] = {{"convert", r.ms.convert},     {"normalize", r.ms.normalize},
+                                                     {"track", r.ms.track},         {"integrate", r.ms.integrate},
+                                                     {"raycast", r.ms.raycast}};
+    const double bytes[] = {r.bytes.convert, r.bytes.normalize, r.bytes.track, r.bytes.integrate, r.bytes.raycast};
+    for (std::size_t k = 0; k < 5; ++k) {
+      const double floor_ms = r.bandwidth > 0 ? 1e3 * bytes[k] / r.bandwidth : 0;
+      std::snprintf(line, sizeof line, "| %s | %s | %dx%d | %.0f | %s | %.3f | %.2f | %.4f | %.0f |\n", DeviceName(r.device),
+                    volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.bandwidth / 1e9, stages[k].first,
+                    stages[k].second, bytes[k] / 1e6, floor_ms, floor_ms > 0 ? stages[k].second / floor_ms : 0.0);
+      out += line;
+    }
   }
   return out;
 }

@@ -3,6 +3,7 @@
 // `hdrfusion bench --suite engine` and by `hdrfusion-bench` (core-only builds, GPU machine).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -41,6 +42,10 @@ struct EngineBenchRow {
   double mesh_ms = 0;              // surface extraction of the final model, once
   std::size_t triangles = 0;
   int lost = 0;
+  // The least data each stage must move per frame (bytes; StageFloorBytes below) and the
+  // device's measured copy bandwidth (bytes/s): the stage's floor is their quotient.
+  StageTimes bytes;
+  double bandwidth = 0;
 };
 
 // Runs every device x case; `progress` is told each finished row.
@@ -48,5 +53,21 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
                                            const std::function<void(const EngineBenchRow&)>& progress = {});
 // Markdown table of the rows.
 std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows);
+// Markdown table of each row's stages against their memory-bandwidth floors: the least
+// bytes the stage must read and write per frame, the time they take at the device's
+// measured copy bandwidth, and how many times that the stage takes.
+std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows);
+
+// The least bytes each stage moves for one frame of `width` x `height` pixels: convert reads
+// colour and depth and writes radiance, confidence and depth (27 B a pixel); normalize reads
+// radiance and writes normalized radiance (16 B); track reads the live and reference views
+// once per Gauss-Newton iteration at each level (68 B a pixel of that level) and writes the
+// live pyramid once (40 B a pixel of every level); integrate reads and writes every visible
+// brick once and reads the frame's depth, radiance and confidence (20 B a pixel); ray casting
+// reads every visible brick once and writes vertices, normals and radiance (36 B a pixel).
+StageTimes StageFloorBytes(int width, int height, const std::array<double, 4>& level_iterations,
+                           double visible_bricks, double brick_bytes);
+// Bytes per second a parallel memcpy of 256 MiB achieves on the CPU threads (read plus write).
+double CpuCopyBandwidth();
 
 }  // namespace hdrf::pipeline

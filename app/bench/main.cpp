@@ -102,6 +102,8 @@ int main(int argc, char** argv) {
                    r.c.voxel_mm, r.fps);
     });
     std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
+    std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth):\n\n%s",
+                pipeline::EngineFloorTable(rows).c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hdrfusion-bench: %s\n", e.what());
     return 1;

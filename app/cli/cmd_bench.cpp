@@ -140,6 +140,8 @@ Command AddBenchCommand(CLI::App& app) {
                      r.c.height, r.c.voxel_mm, r.fps);
       });
       std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
+      std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth):\n\n%s",
+                  pipeline::EngineFloorTable(rows).c_str());
       return 0;
     }
     std::printf("synthetic sensor, scene room, flicker auto exposure, %d OpenMP threads\n\n",

@@ -25,6 +25,10 @@ std::string CudaDeviceDescription();
 // Bytes of GPU 0's memory in use (by every process), 0 when none.
 std::size_t CudaMemoryUsed();
 
+// GPU 0's memory bandwidth as a device-to-device copy achieves it (bytes read plus bytes
+// written, per second; the best of a few copies of 256 MiB), 0 when there is no GPU.
+double CudaCopyBandwidth();
+
 namespace cuda {
 void* Malloc(std::size_t bytes);
 void Free(void* ptr) noexcept;

@@ -1,6 +1,9 @@
 // CUDA runtime entry points for a build with the CUDA backend (plain C++ against cudart).
 #include <cuda_runtime_api.h>
 
+#include <algorithm>
+#include <chrono>
+
 #include "common/cuda_check.h"
 #include "common/cuda_runtime.h"
 
@@ -36,6 +39,31 @@ std::size_t CudaMemoryUsed() {
     return 0;
   }
   return total_b - free_b;
+}
+
+double CudaCopyBandwidth() {
+  if (!CudaAvailable()) return 0;
+  constexpr std::size_t kBytes = 256ull << 20;
+  void* a = cuda::Malloc(kBytes);
+  void* b = nullptr;
+  try {
+    b = cuda::Malloc(kBytes);
+  } catch (...) {
+    cuda::Free(a);
+    throw;
+  }
+  double best = 0;
+  for (int k = 0; k < 5; ++k) {
+    cuda::Synchronize();
+    const auto t0 = std::chrono::steady_clock::now();
+    HDRF_CUDA_CHECK(cudaMemcpy(b, a, kBytes, cudaMemcpyDeviceToDevice));
+    cuda::Synchronize();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (k > 0 && s > 0) best = std::max(best, 2.0 * double(kBytes) / s);  // the first copy warms up
+  }
+  cuda::Free(a);
+  cuda::Free(b);
+  return best;
 }
 
 namespace cuda {

@@ -259,6 +259,7 @@ TrackResult Track(const Accumulator& accumulate, int available_levels, long live
       if (!xi.allFinite()) break;
       T = se3::Orthonormalized(T * se3::Exp(Vec6(xi)));
       ++res.iterations;
+      ++res.level_iterations[std::size_t(l)];
       if (l == 0) last = acc;
       if (xi.head<3>().norm() < kStop && xi.tail<3>().norm() < kStop) break;
     }

@@ -136,6 +136,7 @@ struct TrackResult {
   double weakest_info = 0, strongest_info = 0;
   double weak_offset = 0;      // the pose's offset from the prediction along that direction (whitened)
   int iterations = 0;
+  std::array<int, 4> level_iterations{};  // of which at each pyramid level (0 = finest)
   bool lost = false;
   std::string why;             // why it was judged lost
 };

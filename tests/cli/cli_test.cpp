@@ -204,6 +204,35 @@ TEST(Cli, BenchOnTheGpuAloneMeasuresItOrSaysWhyNot) {
   }
 }
 
+// The stage table against the memory-bandwidth floors: every stage of the CPU row is there,
+// with a measured copy bandwidth, and none takes less than the time its least bytes need.
+TEST(Cli, BenchSetsEachStageAgainstItsBandwidthFloor) {
+  const RunResult r = test::RunCommand(std::string(HDRF_BENCH) + " --device cpu --frames 5 --case 64x48x40");
+  ASSERT_EQ(r.status, 0) << r.output;
+  int stages = 0;
+  for (const char* stage : {"convert", "normalize", "track", "integrate", "raycast"}) {
+    const std::string key = std::string("| cpu | compact | 64x48 | ");
+    std::size_t at = r.output.find(key);
+    for (; at != std::string::npos; at = r.output.find(key, at + 1)) {
+      const std::size_t eol = r.output.find('\n', at);
+      const std::string line = r.output.substr(at, eol - at);
+      if (line.find(std::string("| ") + stage + " |") == std::string::npos) continue;
+      double gbs = 0, ms = 0, mb = 0, floor_ms = 0, times = 0;
+      char name[32];
+      ASSERT_EQ(std::sscanf(line.c_str(), "| cpu | compact | 64x48 | %lf | %31s | %lf | %lf | %lf | %lf |", &gbs, name, &ms,
+                            &mb, &floor_ms, &times),
+                6)
+          << line;
+      EXPECT_GT(gbs, 0.1) << line;
+      EXPECT_GT(mb, 0) << line;
+      EXPECT_GE(ms, floor_ms) << line;
+      ++stages;
+      break;
+    }
+  }
+  EXPECT_EQ(stages, 5) << r.output;
+}
+
 }  // namespace
 }  // namespace hdrf
 

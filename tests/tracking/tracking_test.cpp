@@ -134,6 +134,10 @@ TEST(TrackPrior, WeakDirectionOfAStrongViewIsHeldToThePrediction) {
   EXPECT_LT(std::abs(th.x()), 0.1 * kBias);  // the floor: held near the prediction
   EXPECT_LT(std::abs(th.z()), 1e-4);         // the data still win where they are strong
   EXPECT_LT(se3::RotationAngle(held.T_world_camera), 1e-4);
+  int per_level = 0;
+  for (int n : held.level_iterations) per_level += n;
+  EXPECT_EQ(per_level, held.iterations);
+  EXPECT_GT(held.level_iterations[0], 0);
 }
 
 // One ICP term: a live point 1 cm in front of a reference plane facing the camera adds the
