@@ -174,7 +174,9 @@ json FrameReportToJson(const pipeline::FrameReport& r) {
              {"tracking", {{"lost", r.tracking.lost}, {"why", r.tracking.why}, {"inlier_share", r.tracking.inlier_share},
                            {"condition", r.tracking.condition}, {"rms_icp_m", r.tracking.rms_icp_m},
                            {"rms_photo", r.tracking.rms_photo}, {"icp_inliers", r.tracking.icp_inliers},
-                           {"photo_inliers", r.tracking.photo_inliers}, {"iterations", r.tracking.iterations}}},
+                           {"photo_inliers", r.tracking.photo_inliers}, {"iterations", r.tracking.iterations},
+                           {"weakest_info", r.tracking.weakest_info}, {"strongest_info", r.tracking.strongest_info},
+                           {"prior_sigmas", r.tracking.prior_sigmas}}},
              {"fused", r.fused},
              {"depth_share", r.depth_share},
              {"allocated_bricks", r.allocated_bricks},
@@ -207,6 +209,9 @@ pipeline::FrameReport FrameReportFromJson(const fs::path& file, const json& j) {
     r.tracking.iterations = t.at("iterations").get<int>();
     r.tracking.icp_inliers = t.value("icp_inliers", 0.0);
     r.tracking.photo_inliers = t.value("photo_inliers", 0.0);
+    r.tracking.weakest_info = t.value("weakest_info", 0.0);
+    r.tracking.strongest_info = t.value("strongest_info", 0.0);
+    r.tracking.prior_sigmas = t.value("prior_sigmas", 0.0);
     r.fused = j.at("fused").get<bool>();
     const std::string state = j.value("state", r.fused ? "tracked" : "lost");
     bool known = false;

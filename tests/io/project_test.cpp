@@ -144,6 +144,12 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   EXPECT_EQ(p.source, "test");
   EXPECT_EQ(p.source_spec, "synthetic:frames=4");
   EXPECT_EQ(p.reports.size(), 4u);
+  // How firmly the frame fixed its pose (information along its weakest and strongest
+  // directions) and how far from the prediction, kept per frame.
+  EXPECT_GT(p.reports[3].tracking.weakest_info, 0);
+  EXPECT_EQ(p.reports[3].tracking.weakest_info, s.reports()[3].tracking.weakest_info);
+  EXPECT_EQ(p.reports[3].tracking.strongest_info, s.reports()[3].tracking.strongest_info);
+  EXPECT_EQ(p.reports[3].tracking.prior_sigmas, s.reports()[3].tracking.prior_sigmas);
   EXPECT_EQ(p.keyframes.size(), s.keyframes().size());
   EXPECT_EQ(p.model.allocated_bricks(), s.pipeline().volume_stats().allocated_bricks);
   const std::string bytes = test::ReadText(good);
