@@ -17,6 +17,8 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
                                            const std::function<void(const EngineBenchRow&)>& progress) {
   std::vector<EngineBenchRow> rows;
   constexpr int kWarmup = 5;
+  // Each device's copy bandwidth, measured once for the whole table.
+  double bandwidth[2] = {-1, -1};
   for (const BenchCase& c : o.cases) {
     sim::SimOptions so;
     so.width = c.width;
@@ -68,7 +70,9 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
         row.fps = 1000.0 / row.wall_ms;
         row.visible_bricks = visible / n;
         row.bytes = StageFloorBytes(c.width, c.height, level_iterations, row.visible_bricks, double(po.volume.brick_bytes()));
-        row.bandwidth = dev == Device::kCuda ? CudaCopyBandwidth() : CpuCopyBandwidth();
+        double& bw = bandwidth[dev == Device::kCuda ? 1 : 0];
+        if (bw < 0) bw = dev == Device::kCuda ? CudaCopyBandwidth() : CpuCopyBandwidth();
+        row.bandwidth = bw;
         const VolumeStats vs = pipe.volume_stats();
         row.bricks = vs.allocated_bricks;
         const double bytes = double(vs.bytes);

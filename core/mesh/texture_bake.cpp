@@ -15,7 +15,7 @@ void BakeOptions::Check() const {
   if (!(occlusion_tolerance > 0 && occlusion_tolerance < 0.5f))
     throw SettingError("occlusion tolerance", "must be in (0, 0.5) m, got " + std::to_string(occlusion_tolerance));
   if (!(sample_sigma_px >= 0 && sample_sigma_px <= 2))
-    throw SettingError("sample sigma", "must be 0 (bilinear) to 2 pixels, got " + std::to_string(sample_sigma_px));
+    throw SettingError("--sample-sigma", "must be 0 (bilinear) to 2 pixels, got " + std::to_string(sample_sigma_px));
   if (edge_margin_px < 0 || edge_margin_px > 16)
     throw SettingError("edge margin", "must be 0 to 16 pixels, got " + std::to_string(edge_margin_px));
 }
@@ -138,7 +138,8 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
   // 3. Every surface texel from the views that see it.
   const bool has_normals = m.normal.size() == m.position.size();
   const bool has_radiance = m.radiance.size() == m.position.size();
-  const float kernel = o.sample_sigma_px > 0 ? -0.5f / (o.sample_sigma_px * o.sample_sigma_px) : 0.0f;
+  const bool gaussian = o.sample_sigma_px > 0;
+  const float kernel = gaussian ? -0.5f / (o.sample_sigma_px * o.sample_sigma_px) : 0.0f;
   const auto sample = [&](Float3 p, Float3 n, const std::vector<int>& cand, Float3& sum, float& wsum, int& count) {
     for (int k : cand) {
       const ViewData& d = vd[std::size_t(k)];
@@ -178,7 +179,7 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
       for (int yy = y0; yy <= y0 + 1; ++yy)
         for (int xx = x0; xx <= x0 + 1; ++xx) {
           const float dx = px.x - float(xx), dy = px.y - float(yy);
-          const float g = (kernel < 0 ? std::exp(kernel * (dx * dx + dy * dy)) : (1 - std::fabs(dx)) * (1 - std::fabs(dy))) *
+          const float g = (gaussian ? std::exp(kernel * (dx * dx + dy * dy)) : (1 - std::fabs(dx)) * (1 - std::fabs(dy))) *
                           conf(xx, yy) * w;
           sum += L(xx, yy) * g;
           wsum += g;

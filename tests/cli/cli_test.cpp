@@ -646,6 +646,9 @@ TEST(Cli, ExportTexturedAssetsThatOtherToolsRead) {
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --texel-mm 0.01");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("mm"), std::string::npos) << r.output;
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --sample-sigma 5");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--sample-sigma"), std::string::npos) << r.output;
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "y").string() + " --render 640x");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--render"), std::string::npos) << r.output;
