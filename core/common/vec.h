@@ -28,6 +28,15 @@ HDRF_HD Float3 Cross(Float3 a, Float3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 HDRF_HD float Length(Float3 a) { return sqrtf(Dot(a, a)); }
+// The nearest integer, halves away from zero: lroundf's result wherever it fits an int, but
+// inline on the host too (lroundf is a library call there, a tenth of the integration's time).
+// NaN and magnitudes past the int range give INT_MIN, which every caller's bounds test refuses.
+HDRF_HD int RoundToInt(float x) {
+  if (!(fabsf(x) < 2147483520.f)) return -2147483647 - 1;
+  const int i = int(x);             // toward zero
+  const float d = x - float(i);     // the exact fractional part
+  return i + (d >= 0.5f ? 1 : 0) - (d <= -0.5f ? 1 : 0);
+}
 HDRF_HD Float3 Normalized(Float3 a) { return a * (1.0f / Length(a)); }
 HDRF_HD float MaxComponent(Float3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
 HDRF_HD float Luminance(Float3 rgb) {  // Rec. 709 / sRGB primaries

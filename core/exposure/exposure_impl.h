@@ -26,7 +26,7 @@ HDRF_HD bool ExposureSample(const ExposureArgs& a, int x, int y, float* log_rati
   const Float3 q = a.T_live_world.Apply(m);
   if (q.z <= 0.1f) return false;
   const Float2 u = a.cam.Project(q);
-  const int ux = int(lroundf(u.x)), uy = int(lroundf(u.y));
+  const int ux = RoundToInt(u.x), uy = RoundToInt(u.y);
   if (ux < 0 || uy < 0 || ux >= a.cam.width || uy >= a.cam.height) return false;
   const float wl = a.live_confidence(ux, uy);
   const float ll = Luminance(a.live_radiance(ux, uy));

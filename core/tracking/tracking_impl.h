@@ -71,7 +71,7 @@ HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
   const Float3 pr = a.T_ref_world.Apply(p);
   if (pr.z <= 0.f) return false;
   const Float2 u = a.ref_cam.Project(pr);
-  const int ux = int(lroundf(u.x)), uy = int(lroundf(u.y));
+  const int ux = RoundToInt(u.x), uy = RoundToInt(u.y);
   if (ux < 0 || uy < 0 || ux >= a.ref_cam.width || uy >= a.ref_cam.height) return false;
   const Float3 m = a.ref_vertex(ux, uy), n = a.ref_normal(ux, uy);
   if (Length(n) == 0.f) return false;

@@ -63,21 +63,17 @@ HDRF_HD float HalfToFloat(std::uint16_t h) {
 #if defined(__CUDA_ARCH__)
   return __half2float(__ushort_as_half(h));  // exact either way
 #else
-  const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
-  std::uint32_t x;
-  if (e == 0) {
-    if (m == 0) {
-      x = sign;
-    } else {  // subnormal: m * 2^-24
-      const float v = float(m) * (1.0f / 16777216.0f);
-      memcpy(&x, &v, 4);
-      x |= sign;
-    }
-  } else if (e == 31) {
-    x = sign | 0x7f800000u | (m << 13);
-  } else {
-    x = sign | ((e + 112u) << 23) | (m << 13);
-  }
+  // Exponent and mantissa moved into a float's fields, then scaled by 2^112 (exact: it only
+  // rebases the exponent, and turns half subnormals into normal floats); infinities and NaNs
+  // keep an all-ones exponent. No branches (the ray cast decodes three per voxel it reads).
+  const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16, em = std::uint32_t(h & 0x7fffu) << 13;
+  std::uint32_t bits;
+  float v;
+  memcpy(&v, &em, 4);
+  v *= 5.192296858534828e33f;  // 2^112
+  memcpy(&bits, &v, 4);
+  const std::uint32_t special = (h & 0x7c00u) == 0x7c00u ? 0x7f800000u : 0u;
+  const std::uint32_t x = sign | bits | special;
   float f;
   memcpy(&f, &x, 4);
   return f;
@@ -130,7 +126,7 @@ struct CompactVoxel {
   HDRF_HD Voxel Decode() const { return {Tsdf(), W(), Radiance(), 0.f, Wr()}; }
   HDRF_HD void Store(const Voxel& x) {
     const float t = x.tsdf > 1.f ? 1.f : (x.tsdf < -1.f ? -1.f : x.tsdf);
-    tsdf = std::int16_t(lroundf(t * 32767.f));
+    tsdf = std::int16_t(RoundToInt(t * 32767.f));
     w = Weight(x.w);
     r = FloatToHalf(x.radiance.x);
     g = FloatToHalf(x.radiance.y);
@@ -231,35 +227,52 @@ struct VolumeView {
   // Voxel-centre grid coordinates of a world point.
   HDRF_HD Float3 Grid(Float3 p) const { return p * (1.f / voxel_m) - Float3{0.5f, 0.5f, 0.5f}; }
 
+  // The pool slots of the eight corners (x..x+1, y..y+1, z..z+1) of a trilinear cell, each
+  // distinct brick looked up once (a cell spans one brick, or two to eight at brick faces);
+  // slot[k] < 0 where that corner's brick is absent. `hint` is a brick already looked up.
+  struct BrickHint {
+    int bx = 0, by = 0, bz = 0, slot = -1;
+    bool valid = false;
+  };
+  HDRF_HD void CornerSlots(int x, int y, int z, const BrickHint& hint, int slot[8]) const {
+    const int bx0 = x >> 3, by0 = y >> 3, bz0 = z >> 3;
+    const int sx = (x & 7) == 7 ? 1 : 0, sy = (y & 7) == 7 ? 1 : 0, sz = (z & 7) == 7 ? 1 : 0;
+    for (int dz = 0; dz <= sz; ++dz)
+      for (int dy = 0; dy <= sy; ++dy)
+        for (int dx = 0; dx <= sx; ++dx) {
+          const int bx = bx0 + dx, by = by0 + dy, bz = bz0 + dz;
+          slot[dz * 4 + dy * 2 + dx] =
+              hint.valid && bx == hint.bx && by == hint.by && bz == hint.bz ? hint.slot : Slot(bx, by, bz);
+        }
+    // Corners whose brick is the cell's first along an axis share that entry.
+    for (int k = 0; k < 8; ++k) {
+      const int dx = (k & 1) & sx, dy = ((k >> 1) & 1) & sy, dz = (k >> 2) & sz;
+      if (dx != (k & 1) || dy != ((k >> 1) & 1) || dz != (k >> 2)) slot[k] = slot[dz * 4 + dy * 2 + dx];
+    }
+  }
+  HDRF_HD const V* Corner(const int slot[8], int x, int y, int z, int k) const {
+    const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
+    if (slot[k] < 0) return nullptr;
+    const int cx = x + dx, cy = y + dy, cz = z + dz;
+    return &pool[long(slot[k]) * 512 + ((cz & 7) * 8 + (cy & 7)) * 8 + (cx & 7)];
+  }
+
   // Trilinear TSDF over the observed corners, renormalised; undefined (false) when the
   // observed corners carry less than half of the interpolation weight.
-  HDRF_HD bool SampleTsdf(Float3 p, float* out) const {
+  HDRF_HD bool SampleTsdf(Float3 p, float* out, const BrickHint& hint = BrickHint{}) const {
     const Float3 g = Grid(p);
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
+    int slot[8];
+    CornerSlots(x, y, z, hint, slot);
     float acc = 0.f, wsum = 0.f;
-    if ((x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7) {
-      // Fast path: all eight corners in one brick.
-      const int b = Slot(x >> 3, y >> 3, z >> 3);
-      if (b < 0) return false;
-      const V* base = &pool[long(b) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
-      for (int k = 0; k < 8; ++k) {
-        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const V& v = base[dz * 64 + dy * 8 + dx];
-        if (v.W() <= 0.f) continue;
-        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        acc += w * v.Tsdf();
-        wsum += w;
-      }
-    } else {
-      for (int k = 0; k < 8; ++k) {
-        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const V* v = Get(x + dx, y + dy, z + dz);
-        if (!v || v->W() <= 0.f) continue;
-        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        acc += w * v->Tsdf();
-        wsum += w;
-      }
+    for (int k = 0; k < 8; ++k) {
+      const V* v = Corner(slot, x, y, z, k);
+      if (!v || v->W() <= 0.f) continue;
+      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
+      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
+      acc += w * v->Tsdf();
+      wsum += w;
     }
     if (wsum < 0.5f) return false;
     *out = acc / wsum;
@@ -271,12 +284,14 @@ struct VolumeView {
     const Float3 g = Grid(p);
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
+    int slot[8];
+    CornerSlots(x, y, z, BrickHint{}, slot);
     Float3 r{0, 0, 0};
     float nn = 0.f, wsum = 0.f;
     for (int k = 0; k < 8; ++k) {
-      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const V* v = Get(x + dx, y + dy, z + dz);
+      const V* v = Corner(slot, x, y, z, k);
       if (!v || v->Wr() <= 0.f) continue;
+      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
       const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
       r += v->Radiance() * w;
       nn += v->Nr() * w;
@@ -351,7 +366,7 @@ HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i
   const Float3 pc = a.T_camera_world.Apply(pw);
   if (pc.z <= 0.05f) return 0;
   const Float2 px = a.cam.Project(pc);
-  const int u = int(lroundf(px.x)), v = int(lroundf(px.y));
+  const int u = RoundToInt(px.x), v = RoundToInt(px.y);
   if (u < 0 || v < 0 || u >= a.cam.width || v >= a.cam.height) return 0;
   const float zd = a.depth(u, v);
   if (!(zd > 0.f)) return 0;
@@ -424,20 +439,20 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
       break;
     const int bx = int(floorf(g.x)), by = int(floorf(g.y)), bz = int(floorf(g.z));
-    if (!V.GroupAllocated(bx, by, bz)) {
-      const float te = cell_exit(p, 4 * bs, t) + 0.01f * vs;
-      t = t + 0.1f * vs > te ? t + 0.1f * vs : te;
-      prev_valid = false;
-      continue;
-    }
-    if (!V.BrickAllocated(bx, by, bz)) {
-      const float te = cell_exit(p, bs, t) + 0.01f * vs;
+    // The brick first (one look-up where it is there, as near surfaces); where it is absent,
+    // its group decides how far the ray may skip.
+    typename VolumeView<Enc>::BrickHint hint;
+    hint.bx = bx, hint.by = by, hint.bz = bz, hint.valid = true;
+    hint.slot = V.bricks.Find(BrickKey(bx, by, bz));
+    if (hint.slot < 0) {
+      const float cell = V.GroupAllocated(bx, by, bz) ? bs : 4 * bs;
+      const float te = cell_exit(p, cell, t) + 0.01f * vs;
       t = t + 0.1f * vs > te ? t + 0.1f * vs : te;
       prev_valid = false;
       continue;
     }
     float f;
-    if (!V.SampleTsdf(p, &f)) {
+    if (!V.SampleTsdf(p, &f, hint)) {
       t += 0.5f * trunc;  // unobserved voxels inside an allocated brick
       prev_valid = false;
       continue;

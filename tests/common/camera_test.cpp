@@ -1,6 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
 #include "common/camera.h"
+#include "common/vec.h"
 
 namespace hdrf {
 namespace {
@@ -44,6 +50,39 @@ TEST(PinholeCamera, ContainsIsInclusiveOfBorderPixels) {
   EXPECT_TRUE(kCam.Contains({639.f, 479.f}));
   EXPECT_FALSE(kCam.Contains({639.5f, 10.f}));
   EXPECT_FALSE(kCam.Contains({-0.1f, 10.f}));
+}
+
+// The inline rounding used for pixel look-ups and voxel storage gives lroundf's integer for
+// every float it can meet: halves away from zero, the floats next to each half, large values.
+TEST(RoundToInt, MatchesLroundfWhereverTheResultFitsAnInt) {
+  std::vector<float> xs = {0.f, -0.f, 0.5f, -0.5f, 1.5f, -1.5f, 2.5f, -2.5f, 1e9f, -1e9f, 8388607.5f, -8388607.5f,
+                           16777217.f, 2147483520.f * 0.999f};
+  for (float h = 0.5f; h < 1e6f; h = h * 1.37f + 1.f) {
+    const float half = std::floor(h) + 0.5f;
+    for (float x : {half, -half}) {
+      xs.push_back(x);
+      xs.push_back(std::nextafter(x, 0.f));
+      xs.push_back(std::nextafter(x, 2.f * x));
+    }
+  }
+  std::uint32_t seed = 12345;
+  for (int i = 0; i < 200000; ++i) {  // random bit patterns of in-range floats
+    seed = seed * 1664525u + 1013904223u;
+    float x;
+    std::uint32_t bits = seed & 0xcfffffffu;
+    std::memcpy(&x, &bits, 4);
+    if (std::isfinite(x) && std::fabs(x) < 2e9f) xs.push_back(x);
+  }
+  int checked = 0;
+  for (float x : xs) {
+    ASSERT_EQ(RoundToInt(x), int(std::lroundf(x))) << "x = " << x;
+    ++checked;
+  }
+  EXPECT_GT(checked, 150000);
+  // Out of range and NaN: a value every bounds test refuses.
+  EXPECT_LT(RoundToInt(std::nanf("")), -1000000000);
+  EXPECT_LT(RoundToInt(3e9f), -1000000000);
+  EXPECT_LT(RoundToInt(-3e9f), -1000000000);
 }
 
 }  // namespace

@@ -91,6 +91,16 @@ TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {
     ASSERT_EQ(volume::FloatToHalf(volume::HalfToFloat(std::uint16_t(h))), h) << "half 0x" << std::hex << h;
   }
   EXPECT_EQ(finite, 63488);
+  // Exact values, the smallest subnormal, infinities and NaNs decoded.
+  EXPECT_EQ(volume::HalfToFloat(0x3c00), 1.0f);
+  EXPECT_EQ(volume::HalfToFloat(0xc000), -2.0f);
+  EXPECT_EQ(volume::HalfToFloat(0x7bff), 65504.0f);
+  EXPECT_EQ(volume::HalfToFloat(0x0001), std::ldexp(1.0f, -24));
+  EXPECT_EQ(volume::HalfToFloat(0x8200), -std::ldexp(1.0f, -15));
+  EXPECT_TRUE(std::isinf(volume::HalfToFloat(0x7c00)) && volume::HalfToFloat(0x7c00) > 0);
+  EXPECT_TRUE(std::isinf(volume::HalfToFloat(0xfc00)) && volume::HalfToFloat(0xfc00) < 0);
+  EXPECT_TRUE(std::isnan(volume::HalfToFloat(0x7e00)));
+  EXPECT_TRUE(std::isnan(volume::HalfToFloat(0xfc01)));
   // Rounding: between two neighbouring halves, the nearer wins; a tie goes to the even one.
   const float one = volume::HalfToFloat(0x3c00), next = volume::HalfToFloat(0x3c01);
   EXPECT_EQ(volume::FloatToHalf(one + 0.49f * (next - one)), 0x3c00);
@@ -107,10 +117,6 @@ TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {
   EXPECT_LE(worst, 1.0 / 2048 + 1e-9);
   EXPECT_GT(worst, 1.0 / 8192);  // really quantised
 }
-
-// The compact encodings against the full one on the same 100-frame flicker sequence: fused
-// with the true poses and exposures (the encoding alone decides the surface and radiance),
-// then tracked end to end (docs/benchmarks.md records the table).
 
 // The compact encodings against the full one on the same 100-frame flicker sequence: fused
 // with the true poses and exposures (the encoding alone decides the surface and radiance),
