@@ -143,6 +143,14 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   connect(this, &MainWindow::exportTrajectory, worker_, &ScanWorker::ExportTrajectory);
   connect(this, &MainWindow::exportRender, worker_, &ScanWorker::ExportRender);
   connect(worker_, &ScanWorker::snapshot, this, &MainWindow::OnSnapshot);
+  connect(worker_, &ScanWorker::meshUpdated, this, [this](std::shared_ptr<const mesh::Mesh> m, bool last) {
+    mesh_latest_ = std::move(m);
+    mesh_latest_last_ = last;
+    if (last && finish_on_last_mesh_) {
+      UpdateMesh();
+      QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+    }
+  });
   connect(worker_, &ScanWorker::failed, this, &MainWindow::OnFailed);
   connect(worker_, &ScanWorker::stateChanged, this, [this](bool running, const QString& msg) {
     statusBar()->showMessage(msg);
@@ -154,7 +162,14 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
     if (!ok && !msg.contains(tr("cancelled"))) QMessageBox::warning(this, tr("Export"), msg);
   });
   connect(worker_, &ScanWorker::finished, this, [this](int) {
-    if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+    if (opts_.screenshot.isEmpty()) return;
+    // The shot once the surface of the last frame is drawn (it may have come already).
+    if (mesh_latest_last_) {
+      QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+    } else {
+      finish_on_last_mesh_ = true;
+      QTimer::singleShot(60000, this, &MainWindow::FinishScripted);
+    }
   });
   connect(worker_, &ScanWorker::projectSaved, this, [this](bool ok, const QString& path, const QString& msg) {
     if (!ok) {
@@ -191,7 +206,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   thread_.start();
   render_timer_ = new QTimer(this);
   connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
-  render_timer_->start(33);
+  render_timer_->start(40);
   ApplyEngineSettings();
   if (!o.project.isEmpty()) OpenProject(o.project);
   if (o.autostart || !o.screenshot.isEmpty()) QTimer::singleShot(0, this, &MainWindow::StartScan);
@@ -646,9 +661,17 @@ void MainWindow::ResetScan() {
 
 void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
   latest_ = std::move(s);  // older ones not shown yet are simply dropped
+  if (!latest_->preview) {
+    const qint64 now = QDateTime::currentMSecsSinceEpoch();
+    if (scan_first_ms_ < 0) scan_first_ms_ = now, scan_first_frame_ = latest_->report.index;
+    scan_last_ms_ = now;
+    scan_last_frame_ = latest_->report.index;
+  }
   if (!opts_.screenshot.isEmpty() && opts_.frames > 0 && latest_->report.index + 1 >= opts_.frames) {
     emit pause();
-    QTimer::singleShot(300, this, &MainWindow::FinishScripted);
+    // The shot once the surface at the stop is drawn (the mesher's last refresh), or after 60 s.
+    finish_on_last_mesh_ = true;
+    QTimer::singleShot(60000, this, &MainWindow::FinishScripted);
   } else if (opts_.frames > 0 && latest_->report.index + 1 >= opts_.frames) {
     emit pause();
   }
@@ -674,7 +697,7 @@ void MainWindow::RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s) 
       return QStringLiteral("RGB %1 %2 %3 (8-bit)").arg(c.r).arg(c.g).arg(c.b);
     });
   }
-  if (visible("depth")) {
+  if (visible("depth") && !s->images.depth.empty()) {
     float hi = 0.5f;
     for (std::size_t i = 0; i < s->images.depth.size(); ++i) hi = std::max(hi, s->images.depth[i]);
     hi = std::min(hi, 8.f);
@@ -700,7 +723,31 @@ void MainWindow::RenderPreview(const std::shared_ptr<const Snapshot>& s) {
   if (!s->trajectory.empty()) view3d_->SetTrajectory(s->trajectory, s->camera);
 }
 
+void MainWindow::TellShownViews() {
+  const auto on = [this](const char* k) { return docks_[k]->isVisible() && !views_[k]->visibleRegion().isEmpty(); };
+  pipeline::ViewSet v;
+  v.radiance = on("radiance");
+  v.confidence = on("confidence");
+  v.nr = on("nr");
+  v.depth = on("depth");
+  v.render = on("model_radiance") || on("model_normals");
+  worker_->SetShownViews(v);
+}
+
+void MainWindow::UpdateMesh() {
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (!mesh_latest_ || mesh_latest_ == mesh_shown_) return;
+  if (mesh_shown_ && now - mesh_time_ms_ < 300 && !mesh_latest_last_) return;
+  mesh_shown_ = mesh_latest_;
+  mesh_time_ms_ = now;
+  ++mesh_updates_;
+  if (scan_first_ms_ >= 0 && now <= scan_last_ms_ + 100) ++mesh_updates_in_scan_;
+  view3d_->SetMesh(*mesh_shown_, tone_->MapColours(mesh_shown_->radiance));
+}
+
 void MainWindow::Render() {
+  TellShownViews();
+  UpdateMesh();
   const auto s = latest_;
   if (!s || s == shown_) return;
   shown_ = s;
@@ -771,12 +818,6 @@ void MainWindow::Render() {
   // 3-D view: the trajectory every frame (first: the view starts from the camera's pose),
   // the mesh a few times a second.
   view3d_->SetTrajectory(s->trajectory, s->camera);
-  const qint64 now = QDateTime::currentMSecsSinceEpoch();
-  if (s->mesh && s->mesh != mesh_shown_ && (now - mesh_time_ms_ > 300 || !mesh_shown_)) {
-    mesh_shown_ = s->mesh;
-    mesh_time_ms_ = now;
-    view3d_->SetMesh(*s->mesh, tone_->MapColours(s->mesh->radiance));
-  }
   view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
   // Status.
   const auto& r = s->report;
@@ -896,6 +937,13 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   v3d["height"] = v3.height();
   report["view3d"] = v3d;
   report["frames_processed"] = latest_ ? latest_->report.index + 1 : 0;
+  // The scan's rate as the studio ran it (frames between the first and the last snapshot over
+  // that time), and how often the 3-D view's surface was refreshed meanwhile.
+  const double scan_s = double(scan_last_ms_ - scan_first_ms_) / 1000.0;
+  report["scan_seconds"] = scan_s;
+  report["scan_fps"] = scan_s > 0 ? double(scan_last_frame_ - scan_first_frame_) / scan_s : 0.0;
+  report["mesh_updates"] = mesh_updates_;
+  report["mesh_updates_per_s"] = scan_s > 0 ? double(mesh_updates_in_scan_) / scan_s : 0.0;
   report["frames_shown"] = frames_shown_;
   report["health"] = health_->text();
   report["error"] = error_->text();

@@ -112,6 +112,8 @@ class MainWindow : public QMainWindow {
   void SaveSettings() const;
   void OnSnapshot(std::shared_ptr<const Snapshot> s);
   void Render();  // the latest snapshot into every visible view (timer)
+  void UpdateMesh();  // the latest surface into the 3-D view, a few times a second
+  void TellShownViews();  // which stage images the views on screen need, to the worker
   void RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s);
   void RenderPreview(const std::shared_ptr<const Snapshot>& s);
   void OnFailed(const QString& message);
@@ -129,8 +131,14 @@ class MainWindow : public QMainWindow {
   std::shared_ptr<const Snapshot> latest_, shown_;
   QPointer<wizard::CalibrationWizard> wizard_;
   QPointer<class ExportDialog> export_dialog_;
-  std::shared_ptr<const mesh::Mesh> mesh_shown_;
+  std::shared_ptr<const mesh::Mesh> mesh_shown_, mesh_latest_;
+  bool mesh_latest_last_ = false;  // mesh_latest_ is the surface at the scan's stop
   qint64 mesh_time_ms_ = 0;
+  // What the studio's benchmark reads (the screenshot's JSON): the scan's frames and time
+  // between its first and last snapshot, and the 3-D view's mesh updates in that time.
+  qint64 scan_first_ms_ = -1, scan_last_ms_ = -1;
+  int scan_first_frame_ = -1, scan_last_frame_ = -1, mesh_updates_ = 0, mesh_updates_in_scan_ = 0;
+  bool finish_on_last_mesh_ = false;
   QTimer* render_timer_ = nullptr;
   QMap<QString, ImageView*> views_;
   QMap<QString, QDockWidget*> docks_;

@@ -2,6 +2,9 @@
 
 #include <QDateTime>
 #include <QTimer>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 #include <filesystem>
 #include <cmath>
 #include <limits>
@@ -25,7 +28,31 @@ std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) 
   return sensors::OpenAnySource(spec, "srgb");
 }
 
+void MeshWorker::Reset(const volume::VolumeOptions& o) { mesher_ = std::make_unique<mesh::IncrementalMesher>(o); }
+
+void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last) {
+  std::shared_ptr<const mesh::Mesh> m;
+  if (mesher_) {
+    mesher_->Apply(*changed);
+    m = std::make_shared<const mesh::Mesh>(mesher_->Assemble());
+  }
+  busy = false;
+  if (m) emit meshReady(std::move(m), last);
+}
+
 ScanWorker::ScanWorker() {
+  qRegisterMetaType<std::shared_ptr<const hdrf::mesh::Mesh>>();
+  mesh_thread_ = new QThread;
+  mesh_thread_->setObjectName("mesher");
+  mesher_ = new MeshWorker;
+  mesher_->moveToThread(mesh_thread_);
+  // The mesher yields to the scan: below its priority (a nice value for this thread alone).
+  connect(mesh_thread_, &QThread::started, mesher_, [] { setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 5); });
+  connect(mesher_, &MeshWorker::meshReady, this, [this](std::shared_ptr<const mesh::Mesh> m, bool last) {
+    OnMesh(m);
+    emit meshUpdated(std::move(m), last);
+  });
+  mesh_thread_->start();
   qRegisterMetaType<hdrf::gui::ScanSettings>();
   qRegisterMetaType<hdrf::io::AssetOptions>();
   qRegisterMetaType<std::shared_ptr<const hdrf::gui::Snapshot>>();
@@ -36,7 +63,39 @@ ScanWorker::ScanWorker() {
 ScanWorker::~ScanWorker() {
   // A recording in progress is closed with every frame written.
   if (recorder_) recorder_->Finish();
+  mesh_thread_->quit();
+  mesh_thread_->wait();
+  delete mesher_;
+  delete mesh_thread_;
 }
+
+void ScanWorker::SetShownViews(const pipeline::ViewSet& v) {
+  shown_views_ = unsigned(v.radiance) | unsigned(v.confidence) << 1 | unsigned(v.nr) << 2 | unsigned(v.depth) << 3 |
+                 unsigned(v.render) << 4;
+}
+pipeline::ViewSet ScanWorker::ShownViews() const {
+  const unsigned b = shown_views_;
+  return {(b & 1) != 0, (b & 2) != 0, (b & 4) != 0, (b & 8) != 0, (b & 16) != 0};
+}
+
+void ScanWorker::ResetMesher() {
+  mesh_.reset();
+  mesh_frame_ = -1;
+  mesher_->busy = false;
+  const volume::VolumeOptions o = session_->pipeline().options().volume;
+  QMetaObject::invokeMethod(mesher_, [m = mesher_, o] { m->Reset(o); }, Qt::QueuedConnection);
+}
+
+void ScanWorker::RequestMesh(bool last) {
+  if (!session_) return;
+  auto changed = std::make_shared<const volume::BrickSet>(session_->pipeline().ChangedBricks());
+  mesher_->busy = true;
+  mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
+  mesh_frame_ = session_->frames() - 1;
+  QMetaObject::invokeMethod(mesher_, [m = mesher_, changed, last] { m->Apply(changed, last); }, Qt::QueuedConnection);
+}
+
+void ScanWorker::OnMesh(std::shared_ptr<const mesh::Mesh> m) { mesh_ = std::move(m); }
 
 namespace {
 
@@ -71,6 +130,8 @@ void ScanWorker::Open() {
   // only the model starts again.
   if (!(live_ && source_spec_ == settings_.source && !lost_)) OpenSource();
   session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+  ResetMesher();
+  images_time_ms_ = 0;
   // The previous model was dropped on purpose: so is its recovery file.
   DropRecovery();
   recovery_ = io::NewRecoveryFile("studio");
@@ -125,7 +186,7 @@ void ScanWorker::OpenProject(const QString& path) {
     std::unique_ptr<pipeline::ScanSession> session = io::ResumeSession(p);
     DropRecovery();
     session_ = std::move(session);
-    mesh_.reset();
+    ResetMesher();
     settings_.pipeline = session_->pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
     recovery_ = io::NewRecoveryFile("studio");
@@ -172,8 +233,7 @@ void ScanWorker::Publish() {
   if (!session_) return;
   auto s = std::make_shared<Snapshot>();
   pipeline::Pipeline& pipe = session_->pipeline();
-  mesh_ = std::make_shared<const mesh::Mesh>(pipe.ExtractMesh());
-  mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
+  RequestMesh(true);  // the whole model (every brick is new to the mesher): meshUpdated follows
   if (!session_->reports().empty()) s->report = session_->reports().back();
   s->images.render = pipe.Render(pipe.pose());
   FillScanState(*s);
@@ -273,6 +333,8 @@ void ScanWorker::Pause() {
   resume_ = false;
   if (!running_) return;
   running_ = false;
+  // The surface as it stands when the scan stops.
+  if (session_ && session_->frames() > 0) RequestMesh(true);
   emit stateChanged(false, tr("Paused after %1 frames").arg(session_ ? session_->frames() : 0));
 }
 
@@ -317,19 +379,23 @@ void ScanWorker::Step() {
     pipeline::Pipeline& pipe = session_->pipeline();
     const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
     const bool last = source_->size() > 0 && s->report.index + 1 >= source_->size();
-    if (!mesh_ || last ||
-        (s->report.index % std::max(1, settings_.mesh_every_frames) == 0 &&
-         now - mesh_time_ms_ >= settings_.mesh_min_interval_ms)) {
-      mesh_ = std::make_shared<const mesh::Mesh>(pipe.ExtractMesh());
-      mesh_time_ms_ = now;
-    }
+    // The surface: the bricks changed since the last refresh go to the mesher's thread.
+    if (last || (!mesher_->busy && (mesh_frame_ < 0 || (session_->frames() - 1 - mesh_frame_ >=
+                                                             std::max(1, settings_.mesh_every_frames) &&
+                                                         now - mesh_time_ms_ >= settings_.mesh_min_interval_ms))))
+      RequestMesh(last);
     s->color = std::move(f.color);
     if (const int k = s->report.nearest_entry; !s->report.fused && k >= 0 &&
                                               k < int(pipe.relocaliser().entries().size())) {
       s->reloc_hint = pipe.relocaliser().entries()[std::size_t(k)].thumbnail.Clone();
       s->reloc_hint_frame = pipe.relocaliser().entries()[std::size_t(k)].frame;
     }
-    s->images = pipe.DownloadViews();
+    // The stage images on screen, at the display's rate (always on a scan's first and last).
+    if (settings_.images_min_interval_ms <= 0 || images_time_ms_ == 0 || last ||
+        now - images_time_ms_ >= settings_.images_min_interval_ms) {
+      s->images = pipe.DownloadViews(ShownViews());
+      images_time_ms_ = now;
+    }
     FillScanState(*s);
     if (live_) s->live = Status();
     emit snapshot(std::move(s));

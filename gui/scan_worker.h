@@ -16,6 +16,7 @@
 
 #include <QImage>
 #include <QObject>
+#include <QThread>
 #include <array>
 #include <atomic>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "mesh/incremental_mesh.h"
 #include "mesh/mesh.h"
 #include "pipeline/frame_source.h"
 #include "pipeline/scan_session.h"
@@ -34,10 +36,15 @@ namespace hdrf::gui {
 struct ScanSettings {
   std::string source = "synthetic:scene=room,frames=300,ae=flicker";  // as `hdrfusion scan` takes it
   pipeline::PipelineOptions pipeline;
-  // Refresh of the 3-D view's mesh: every this many frames, and no more often than
-  // mesh_min_interval_ms (fast GPU scans would otherwise spend their time meshing).
-  int mesh_every_frames = 15;
-  int mesh_min_interval_ms = 500;
+  // Refresh of the 3-D view's mesh, on the mesher's own thread from the bricks changed since
+  // the last refresh: at most every this many frames, no more often than mesh_min_interval_ms,
+  // and never while the last refresh is still being meshed.
+  int mesh_every_frames = 5;
+  int mesh_min_interval_ms = 400;
+  // The stage images a snapshot carries (only those of views on screen, ScanWorker::
+  // SetShownViews) are copied at most this often (the display's rate; 0: every frame). The
+  // first and the last frame of a scan always carry them.
+  int images_min_interval_ms = 40;
   // Autosave of the scan to a recovery file (io/project.h) while scanning: every this many
   // seconds (0: never).
   double autosave_s = 60;
@@ -64,6 +71,23 @@ struct SensorListing {
   bool in_use = false;       // the studio has it open
 };
 
+// The surface meshed off the scan's thread (mesh/incremental_mesh.h): the bricks that changed
+// come in, the whole surface goes out (meshReady). Lives on its own thread, below the scan's
+// priority.
+class MeshWorker : public QObject {
+  Q_OBJECT
+ public:
+  std::atomic<bool> busy{false};  // a refresh queued or being meshed
+  // Both run on the mesher's thread (queued calls).
+  void Reset(const volume::VolumeOptions& o);
+  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last);
+ signals:
+  void meshReady(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last);
+
+ private:
+  std::unique_ptr<mesh::IncrementalMesher> mesher_;
+};
+
 // What one processed frame leaves for the views (all host copies, never modified).
 struct Snapshot {
   bool preview = false;              // a live frame shown, not scanned (colour and depth only)
@@ -74,11 +98,12 @@ struct Snapshot {
   // camera), and the frame it was taken at; empty otherwise.
   ColorImage reloc_hint;
   int reloc_hint_frame = -1;
-  pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast
+  pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast (those
+                                     // shown, at the display's rate: may be empty)
   PinholeCamera camera;
   std::vector<Pose> trajectory;      // every pose so far
   std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)
-  std::shared_ptr<const mesh::Mesh> mesh;  // latest extracted mesh (may be older than the frame)
+  std::shared_ptr<const mesh::Mesh> mesh;  // latest meshed surface (may be older than the frame)
   std::size_t volume_bytes = 0, bricks = 0;
   double volume_budget_mb = 0;       // volume.max_memory_mb
   double gpu_budget_mb = 0;          // volume.gpu_memory_mb (0: none)
@@ -98,6 +123,9 @@ class ScanWorker : public QObject {
   bool running() const { return running_; }
   // Cancels an export in progress (any thread).
   void CancelExport() { cancel_export_ = true; }
+  // The stage images the window shows now (any thread): snapshots carry only those.
+  void SetShownViews(const pipeline::ViewSet& v);
+  pipeline::ViewSet ShownViews() const;
   // Clears a previous cancel: call (from any thread) before queueing ExportAsset, so that a
   // cancel pressed before the worker starts the export still counts.
   void ArmExport() { cancel_export_ = false; }
@@ -140,6 +168,8 @@ class ScanWorker : public QObject {
 
  signals:
   void snapshot(std::shared_ptr<const hdrf::gui::Snapshot> s);
+  // The surface, meshed again off the scan's thread (last: from the scan's last frame).
+  void meshUpdated(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last);
   void stateChanged(bool running, const QString& message);
   void failed(const QString& message);  // the scan paused because of it
   void finished(int frames);            // the source is exhausted
@@ -159,6 +189,9 @@ class ScanWorker : public QObject {
   void Loop();     // one frame: scanned while running, else previewed (live cameras)
   void Step();
   void Preview();
+  void RequestMesh(bool last);  // the bricks changed since the last request, to the mesher
+  void ResetMesher();           // a new model: the mesher starts empty
+  void OnMesh(std::shared_ptr<const mesh::Mesh> m);
   void Open();
   void Autosave(bool force);  // to recovery_ when due (or now), if frames were added since
   void DropRecovery();        // the recovery file is no longer needed
@@ -188,7 +221,11 @@ class ScanWorker : public QObject {
   int saved_by_user_ = 0;               // frames in the last save the user asked for
   std::int64_t autosave_time_ms_ = 0;
   std::shared_ptr<const mesh::Mesh> mesh_;
-  std::int64_t mesh_time_ms_ = 0;
+  std::int64_t mesh_time_ms_ = 0, images_time_ms_ = 0;
+  int mesh_frame_ = -1;             // the frame of the last mesh request
+  QThread* mesh_thread_ = nullptr;
+  MeshWorker* mesher_ = nullptr;    // lives on mesh_thread_
+  std::atomic<unsigned> shown_views_{0x1f};  // ViewSet as bits
   bool running_ = false;
   std::atomic<bool> cancel_export_{false};
 };

@@ -26,11 +26,13 @@
 
 #include "mesh/world_frame.h"
 
+#include <QDateTime>
 #include <QLabel>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
 #include <QSurfaceFormat>
+#include <QTimer>
 #include <QWheelEvent>
 
 namespace hdrf::gui {
@@ -212,8 +214,22 @@ void VtkView::SetRegion(const Float3& lo, const Float3& hi) {
   d_->region->SetPoints(pts);
   d_->region->SetLines(lines);
   d_->region->Modified();
+  ChangedByScan();
+}
+
+void VtkView::ChangedByScan() {
   dirty_ = true;
-  update();
+  if (redraw_pending_) return;
+  const qint64 wait = last_redraw_ms_ + trajectory_refresh_ms_ - QDateTime::currentMSecsSinceEpoch();
+  if (wait <= 0) {
+    update();
+    return;
+  }
+  redraw_pending_ = true;
+  QTimer::singleShot(int(wait), this, [this] {
+    redraw_pending_ = false;
+    update();
+  });
 }
 
 VtkView::~VtkView() {
@@ -261,6 +277,8 @@ void VtkView::paintGL() {
   if (dirty_) {
     dirty_ = false;
     d_->window->Render();
+    ++redraws_;
+    last_redraw_ms_ = QDateTime::currentMSecsSinceEpoch();
   }
   // Copy VTK's last frame into the widget's framebuffer, then make it opaque.
   vtkOpenGLState* st = d_->window->GetState();
@@ -362,8 +380,7 @@ void VtkView::SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera&
   d_->frustum->SetPoints(fp);
   d_->frustum->SetLines(fl);
   d_->frustum->Modified();
-  dirty_ = true;
-  update();
+  ChangedByScan();
 }
 
 void VtkView::ResetView() {

@@ -33,6 +33,11 @@ class VtkView : public QOpenGLWidget {
   std::array<Float3, 2> region() const { return region_; }
   void ResetView();
   std::size_t mesh_triangles() const { return triangles_; }
+  // The trajectory and region move with every frame of a scan; the view draws them again at
+  // most this often (a redraw of a large surface is the costliest thing the window does;
+  // a new surface, a reset view and the mouse redraw at once).
+  void SetTrajectoryRefreshMs(int ms) { trajectory_refresh_ms_ = ms; }
+  int redraws() const { return redraws_; }  // scene redraws so far
   // The last rendered frame (for tests and screenshots).
   QImage Capture();
 
@@ -50,6 +55,7 @@ class VtkView : public QOpenGLWidget {
 
  private:
   void Cleanup();
+  void ChangedByScan();  // dirty; redrawn now or when trajectory_refresh_ms_ has passed
   void SetEventInfo(QMouseEvent* e);
   void UpdateGround(const mesh::Mesh& m);
   static constexpr double kGridStep = 0.5;    // m
@@ -57,6 +63,9 @@ class VtkView : public QOpenGLWidget {
   struct Impl;
   std::unique_ptr<Impl> d_;
   bool dirty_ = true;
+  int trajectory_refresh_ms_ = 500, redraws_ = 0;
+  bool redraw_pending_ = false;
+  qint64 last_redraw_ms_ = 0;
   bool first_mesh_ = true;
   std::size_t triangles_ = 0;
   std::array<Float3, 2> region_{};

@@ -192,6 +192,8 @@ Command AddScanCommand(CLI::App& app) {
     std::string failure, autosave_failure;
     bool stopped = false, far_said = false;
     Progress progress("scan", total);
+    // The loop's own time (reading the source included): the rate the studio is compared with.
+    const auto loop_start = std::chrono::steady_clock::now();
     {
       StopOnInterrupt stop;  // Ctrl-C ends the scan early, keeping what it built
       try {
@@ -247,6 +249,7 @@ Command AddScanCommand(CLI::App& app) {
       }
     }
     progress.Done();
+    const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     const int n = session.frames();
     if (n == 0) throw Error(failure.empty() ? "the source delivered no frames" : failure);
     if (session.count(pipeline::FrameState::kWaiting) == n && !pipe.volume_stats().allocated_bricks)
@@ -319,6 +322,7 @@ Command AddScanCommand(CLI::App& app) {
                                   {"compensate", mean.compensate}, {"integrate", mean.integrate},
                                   {"raycast", mean.raycast}, {"total", mean.total()}}},
                      {"fps", session.frames_per_second()},
+                     {"wall_fps", loop_s > 0 ? double(n) / loop_s : 0.0},
                      {"volume", {{"allocated_bricks", vs.allocated_bricks}, {"bytes", vs.bytes}, {"full", vs.full},
                                  {"full_reason", vs.full_reason}, {"voxel_m", o.volume.voxel_m},
                                  {"gpu_bricks", vs.streaming.gpu_bricks}, {"host_bricks", vs.streaming.host_bricks},
@@ -335,9 +339,10 @@ Command AddScanCommand(CLI::App& app) {
     }
     std::error_code rm_ec;
     fs::remove(recovery, rm_ec);
-    std::printf("scanned %d frames (%d fused, %d lost, %d relocalisations) at %.1f frames/s: %zu mesh vertices, %zu "
-                "triangles\n",
-                n, session.fused(), lost, session.relocalisations(), session.frames_per_second(), vertices, triangles);
+    std::printf("scanned %d frames (%d fused, %d lost, %d relocalisations) at %.1f frames/s (%.1f with reading the "
+                "source): %zu mesh vertices, %zu triangles\n",
+                n, session.fused(), lost, session.relocalisations(), session.frames_per_second(),
+                loop_s > 0 ? double(n) / loop_s : 0.0, vertices, triangles);
     if (exp_err) std::printf("exposure ratio vs reported: median relative error %.2f %%\n", 100 * *exp_err);
     std::printf("wrote %s/{trajectory.txt, mesh.ply, render_last.exr/png, render_first.exr/png, keyframes/ (%zu), "
                 "keyframes.json, sensor.json, report.json} and the project %s\n",

@@ -44,6 +44,15 @@ struct FrameViews {
   DepthImage depth;  // filtered, metres
   volume::Volume::Rendering render;
 };
+// Which of them a caller wants copied (the studio: only the views on screen; an image not
+// wanted stays empty).
+struct ViewSet {
+  bool radiance = true;    // radiance
+  bool confidence = true;  // confidence and max_confidence
+  bool nr = true;
+  bool depth = true;
+  bool render = true;      // the model's ray cast
+};
 
 // Every intermediate image of the last frame, every pyramid level (host copies): what the
 // backend parity tests compare stage by stage. Much larger than FrameViews.
@@ -121,7 +130,10 @@ class Backend {
   // The model's surface (marching tetrahedra, mesh_impl.h), extracted where the model lives.
   // `progress(fraction)` returning false cancels: hdrf::Cancelled is thrown.
   virtual mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {}) = 0;
-  virtual FrameViews DownloadViews() = 0;
+  virtual FrameViews DownloadViews(const ViewSet& which) = 0;
+  // The model's bricks changed since the last call (every brick on the first call and after
+  // LoadVolume): their coordinates and voxels, for meshing them elsewhere.
+  virtual volume::BrickSet ChangedBricks() = 0;
   virtual FrameImages DownloadStages() = 0;
 };
 

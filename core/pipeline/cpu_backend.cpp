@@ -149,11 +149,23 @@ class CpuBackend final : public Backend {
         },
         const_cast<std::function<bool(double)>*>(&progress));
   }
-  FrameViews DownloadViews() override {
-    if (!render_nr_ready_) NormalizeRender(kNoClip);
-    return {radiance_.Clone(), conf_.Clone(), maxconf_.Clone(), nr_.Clone(), depth_.Clone(),
-            {render_.vertex.Clone(), render_.normal.Clone(), render_.radiance.Clone(), render_.nr.Clone(),
-             render_.depth.Clone()}};
+  FrameViews DownloadViews(const ViewSet& which) override {
+    FrameViews v;
+    if (which.radiance) v.radiance = radiance_.Clone();
+    if (which.confidence) v.confidence = conf_.Clone(), v.max_confidence = maxconf_.Clone();
+    if (which.nr) v.nr = nr_.Clone();
+    if (which.depth) v.depth = depth_.Clone();
+    if (which.render) {
+      if (!render_nr_ready_) NormalizeRender(kNoClip);
+      v.render = {render_.vertex.Clone(), render_.normal.Clone(), render_.radiance.Clone(), render_.nr.Clone(),
+                  render_.depth.Clone()};
+    }
+    return v;
+  }
+  volume::BrickSet ChangedBricks() override {
+    volume::BrickSet b = volume_.CopyChanged(changes_seen_);
+    changes_seen_ = volume_.change_clock();
+    return b;
   }
   FrameImages DownloadStages() override {
     if (!render_nr_ready_) NormalizeRender(kNoClip);
@@ -211,6 +223,7 @@ class CpuBackend final : public Backend {
   Pose render_pose_ = Pose::Identity();
   bool has_render_ = false;
   std::size_t last_visible_ = 0;
+  std::uint32_t changes_seen_ = 0;  // the volume's change clock at the last ChangedBricks
 };
 
 }  // namespace

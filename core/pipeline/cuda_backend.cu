@@ -209,10 +209,19 @@ class CudaBackend final : public Backend {
     return m;
   }
 
-  FrameViews DownloadViews() override {
-    if (!render_nr_ready_) NormalizeRender(kNoClip);
-    return {radiance_.ToHost(), conf_.ToHost(), maxconf_.ToHost(), nr_.ToHost(), depth_.ToHost(), render_.ToHost()};
+  FrameViews DownloadViews(const ViewSet& which) override {
+    FrameViews v;
+    if (which.radiance) v.radiance = radiance_.ToHost();
+    if (which.confidence) v.confidence = conf_.ToHost(), v.max_confidence = maxconf_.ToHost();
+    if (which.nr) v.nr = nr_.ToHost();
+    if (which.depth) v.depth = depth_.ToHost();
+    if (which.render) {
+      if (!render_nr_ready_) NormalizeRender(kNoClip);
+      v.render = render_.ToHost();
+    }
+    return v;
   }
+  volume::BrickSet ChangedBricks() override { return volume_.CopyChanged(); }
   FrameImages DownloadStages() override {
     if (!render_nr_ready_) NormalizeRender(kNoClip);
     FrameImages f;

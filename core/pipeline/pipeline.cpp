@@ -81,7 +81,8 @@ VolumeStats Pipeline::volume_stats() const {
   return {backend_->AllocatedBricks(), backend_->VolumeBytes(), backend_->VolumeFull(), backend_->VolumeFullReason(),
           backend_->VolumeBounds(), backend_->Streaming()};
 }
-FrameViews Pipeline::DownloadViews() { return backend_->DownloadViews(); }
+FrameViews Pipeline::DownloadViews(const ViewSet& which) { return backend_->DownloadViews(which); }
+volume::BrickSet Pipeline::ChangedBricks() { return backend_->ChangedBricks(); }
 
 const char* FrameStateName(FrameState s) {
   switch (s) {

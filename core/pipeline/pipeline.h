@@ -138,8 +138,11 @@ class Pipeline {
   // the surface, extracted on the device the model lives on; `progress(fraction)` returning
   // false cancels (throws hdrf::Cancelled);
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress = {});
-  // what the studio's views show of the last frame;
-  FrameViews DownloadViews();
+  // what the studio's views show of the last frame (those in `which`);
+  FrameViews DownloadViews(const ViewSet& which = ViewSet{});
+  // the model's bricks changed since the last call (all of them on the first), for a mesher
+  // on another thread (mesh/incremental_mesh.h);
+  volume::BrickSet ChangedBricks();
   // the whole model (every allocated brick).
   const volume::Volume& DownloadVolume();
   // Where the scan stands now (copies; the model is DownloadVolume()).

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "common/device_buffer.h"
@@ -66,6 +67,9 @@ class DeviceVolume {
   const Volume& Download();
   // Replaces the model with a host one (a project reopened).
   void Upload(const Volume& v);
+  // The bricks changed since the last call (every brick on the first call and after
+  // Upload), copied to the host: a flag per slot set by Integrate, read and cleared here.
+  BrickSet CopyChanged();
 
  private:
   // Room for `bricks` in the pool (false, with the reason set, where the GPU has too little
@@ -89,6 +93,8 @@ class DeviceVolume {
   DeviceBuffer<std::uint8_t> temp_;
   DeviceBuffer<std::uint8_t> pool_;  // 512 encoded voxels per brick
   DeviceBuffer<BrickCoord> coords_;
+  DeviceBuffer<std::uint8_t> dirty_;  // per slot: changed since the last CopyChanged
+  std::unordered_set<std::uint64_t> host_dirty_;  // bricks moved out before they were copied
   int allocated_ = 0, capacity_ = 0, last_visible_ = 0;
   std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of the allocated bricks
   std::unordered_map<std::uint64_t, std::vector<std::uint8_t>> host_;  // bricks moved out: key -> voxels

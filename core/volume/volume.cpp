@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "common/error.h"
 #include "volume/raycast_driver.h"
@@ -110,6 +111,7 @@ bool Volume::Allocate(std::uint64_t key) {
   const std::uint64_t g = GroupKey(bx, by, bz);
   if (groups_.Find(g) < 0) groups_.Insert(g, 1);
   brick_coord_.push_back({bx, by, bz});
+  stamp_.push_back(clock_);
   pool_.resize(pool_.size() + bytes);
   VisitEncoding(o_.encoding, [&](auto tag) {
     using V = decltype(tag);
@@ -157,6 +159,43 @@ void Volume::Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 
   pool_ = std::move(pool);
   brick_coord_ = std::move(coords);
   full_reason_ = std::move(full_reason);
+  stamp_.assign(brick_coord_.size(), ++clock_);
+}
+
+BrickSet Volume::CopyChanged(std::uint32_t since) const {
+  BrickSet out;
+  const std::size_t B = o_.brick_bytes();
+  std::size_t n = 0;
+  for (const std::uint32_t s : stamp_) n += s > since;
+  out.coords.reserve(n);
+  out.voxels.resize(n * B);
+  std::size_t k = 0;
+  for (std::size_t slot = 0; slot < stamp_.size(); ++slot) {
+    if (stamp_[slot] <= since) continue;
+    out.coords.push_back(brick_coord_[slot]);
+    std::memcpy(out.voxels.data() + k * B, pool_.data() + slot * B, B);
+    ++k;
+  }
+  return out;
+}
+
+bool Volume::Store(const BrickSet& bricks) {
+  const std::size_t B = o_.brick_bytes();
+  if (bricks.voxels.size() != bricks.coords.size() * B) throw Error("volume copy: inconsistent sizes");
+  ++clock_;
+  for (std::size_t i = 0; i < bricks.size(); ++i) {
+    const auto& c = bricks.coords[i];
+    if (!BrickInRange(c[0], c[1], c[2])) throw Error("volume copy: brick coordinates out of range");
+    const std::uint64_t key = BrickKey(c[0], c[1], c[2]);
+    int slot = table_.Find(key);
+    if (slot < 0) {
+      if (!Allocate(key)) return false;
+      slot = int(brick_coord_.size()) - 1;
+    }
+    std::memcpy(pool_.data() + std::size_t(slot) * B, bricks.voxels.data() + i * B, B);
+    stamp_[std::size_t(slot)] = clock_;
+  }
+  return true;
 }
 
 std::array<Float3, 2> Volume::Bounds() const {
@@ -221,6 +260,8 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
     todo.push_back(slot);
   }
   st.visible_bricks = todo.size();
+  ++clock_;
+  for (const int slot : todo) stamp_[std::size_t(slot)] = clock_;
   // 2. Update the voxels of those bricks.
   std::size_t updated = 0, rad_updates = 0;
   VisitEncoding(o_.encoding, [&](auto tag) {

@@ -68,6 +68,14 @@ class BrickTable {
   std::size_t size_ = 0;
 };
 
+// Some of a model's bricks with their voxels (a copy: the bricks a frame changed, handed to
+// a mesher on another thread): coords[i]'s 512 encoded voxels at voxels[i * brick bytes].
+struct BrickSet {
+  std::vector<std::array<int, 3>> coords;
+  std::vector<std::uint8_t> voxels;
+  std::size_t size() const { return coords.size(); }
+};
+
 class Volume {
  public:
   explicit Volume(const VolumeOptions& o);
@@ -142,6 +150,13 @@ class Volume {
   // rebuilt from the coordinates.
   const std::vector<std::uint8_t>& pool() const { return pool_; }
   void Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 3>> brick_coords, std::string full_reason);
+  // Changes: a clock that each Integrate and Assign advances, each brick stamped with the
+  // clock of its last change. CopyChanged: the bricks changed after clock value `since`.
+  std::uint32_t change_clock() const { return clock_; }
+  BrickSet CopyChanged(std::uint32_t since) const;
+  // Writes bricks in (allocating those not yet here; a mirror of another volume): false,
+  // with full() set, where the memory limit stopped one.
+  bool Store(const BrickSet& bricks);
   // Integration and ray casting argument blocks shared with the CUDA backend.
   // (the caller sets the image views).
   static IntegrateArgs MakeIntegrateArgs(const VolumeOptions& o, const PinholeCamera& cam, const Pose& T_world_camera,
@@ -157,6 +172,8 @@ class Volume {
   BrickTable groups_;  // group key -> 1 (empty-space skipping)
   std::vector<std::uint8_t> pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
+  std::vector<std::uint32_t> stamp_;  // per slot: the change clock of its last update
+  std::uint32_t clock_ = 0;
   std::size_t max_bricks_ = 0;
   std::string full_reason_;
 };

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <vector>
 
 #include "common/error.h"
@@ -141,8 +142,13 @@ bool DeviceVolume::Reserve(int want) {
     HDRF_CUDA_CHECK(cudaMemcpy(coords.data(), coords_.data(), std::size_t(allocated_) * sizeof(BrickCoord),
                                cudaMemcpyDeviceToDevice));
   }
+  DeviceBuffer<std::uint8_t> dirty{std::size_t(cap)};
+  HDRF_CUDA_CHECK(cudaMemset(dirty.data(), 0, std::size_t(cap)));
+  if (allocated_ > 0)
+    HDRF_CUDA_CHECK(cudaMemcpy(dirty.data(), dirty_.data(), std::size_t(allocated_), cudaMemcpyDeviceToDevice));
   pool_ = std::move(pool);
   coords_ = std::move(coords);
+  dirty_ = std::move(dirty);
   const long first = long(allocated_) * 512, count = long(cap) * 512 - first;
   VisitEncoding(options().encoding,
                 [&](auto tag) { FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), first, count); });
@@ -248,6 +254,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
           const auto it = host_.find(keys[std::size_t(i)]);
           if (it == host_.end()) continue;
           cuda::CopyHostToDevice(pool_.data() + std::size_t(base + i) * B, it->second.data(), B);
+          host_dirty_.erase(it->first);
           host_.erase(it);
           host_bytes_ -= B + sizeof(std::uint64_t);
           ++swapped_in_;
@@ -258,6 +265,11 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
     }
   }
   last_visible_ = n[2] + allowed;
+  if (last_visible_ > 0) {
+    std::uint8_t* dirty = dirty_.data();
+    const int* todo = todo_.data();
+    par::ForEach(par::Gpu{}, last_visible_, [=] __device__(int i) { dirty[todo[i]] = 1; });
+  }
   // 4. One block of 512 threads per visible allocated brick.
   VisitEncoding(options().encoding, [&](auto tag) {
     IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
@@ -290,6 +302,8 @@ void DeviceVolume::SwapOut(int count) {
   for (int i = 0; i < count; ++i) out[std::size_t(order[std::size_t(i)])] = 1;
   std::vector<BrickCoord> coords(static_cast<std::size_t>(allocated_));
   cuda::CopyDeviceToHost(coords.data(), coords_.data(), coords.size() * sizeof(BrickCoord));
+  std::vector<std::uint8_t> dirty(static_cast<std::size_t>(allocated_));
+  cuda::CopyDeviceToHost(dirty.data(), dirty_.data(), dirty.size());
   const std::size_t B = 512 * std::size_t(vbytes_);
   std::vector<int> keep;
   std::vector<int> seen;
@@ -299,6 +313,7 @@ void DeviceVolume::SwapOut(int count) {
       cuda::CopyDeviceToHost(voxels.data(), pool_.data() + std::size_t(s) * B, B);
       const BrickCoord& c = coords[std::size_t(s)];
       host_[BrickKey(c.x, c.y, c.z)] = std::move(voxels);
+      if (dirty[std::size_t(s)]) host_dirty_.insert(BrickKey(c.x, c.y, c.z));
       host_bytes_ += B + sizeof(std::uint64_t);
     } else {
       keep.push_back(s);
@@ -319,6 +334,9 @@ void DeviceVolume::SwapOut(int count) {
     FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(kept) * 512, long(capacity_ - kept) * 512);
   });
   last_seen_ = std::move(seen);
+  // The kept bricks changed slots: all counted as changed (a mesher re-reads them).
+  HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty_.size()));
+  if (kept > 0) HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 1, std::size_t(kept)));
   swapped_out_ += count;
   allocated_ = kept;
   RebuildTables(keys_.size());
@@ -381,8 +399,12 @@ void DeviceVolume::Upload(const Volume& v) {
   });
   std::vector<BrickCoord> all(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) all[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
+  host_dirty_.clear();
+  HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty_.size()));
+  if (on_gpu > 0) HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 1, std::size_t(on_gpu)));
   for (int i = 0; i < first; ++i) {
     const std::uint8_t* src = v.pool().data() + std::size_t(i) * B;
+    host_dirty_.insert(BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z));
     host_[BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z)] = std::vector<std::uint8_t>(src, src + B);
     host_bytes_ += B + sizeof(std::uint64_t);
   }
@@ -398,6 +420,46 @@ void DeviceVolume::Upload(const Volume& v) {
   full_reason_ = v.full_reason();
   mirror_.Assign(v.pool(), v.bricks(), v.full_reason());
   mirror_fresh_ = first == 0;  // else the mirror's slot order is the download's, not the file's
+}
+
+BrickSet DeviceVolume::CopyChanged() {
+  BrickSet out;
+  const std::size_t B = 512 * std::size_t(vbytes_);
+  std::vector<int> slots;
+  if (allocated_ > 0) {
+    std::vector<std::uint8_t> dirty(static_cast<std::size_t>(allocated_));
+    cuda::CopyDeviceToHost(dirty.data(), dirty_.data(), dirty.size());
+    HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty.size()));
+    for (int s = 0; s < allocated_; ++s)
+      if (dirty[std::size_t(s)]) slots.push_back(s);
+  }
+  const int n = int(slots.size());
+  out.coords.resize(slots.size() + host_dirty_.size());
+  out.voxels.resize(out.coords.size() * B);
+  if (n > 0) {
+    DeviceBuffer<int> list{slots.size()};
+    cuda::CopyHostToDevice(list.data(), slots.data(), slots.size() * sizeof(int));
+    DeviceBuffer<std::uint8_t> voxels{slots.size() * B};
+    DeviceBuffer<BrickCoord> coords{slots.size()};
+    GatherBricks(reinterpret_cast<const std::uint32_t*>(pool_.data()), reinterpret_cast<std::uint32_t*>(voxels.data()),
+                 list.data(), long(B / 4), n, coords_.data(), coords.data());
+    std::vector<BrickCoord> c(slots.size());
+    cuda::CopyDeviceToHost(c.data(), coords.data(), c.size() * sizeof(BrickCoord));
+    cuda::CopyDeviceToHost(out.voxels.data(), voxels.data(), slots.size() * B);
+    for (int i = 0; i < n; ++i) out.coords[std::size_t(i)] = {c[std::size_t(i)].x, c[std::size_t(i)].y, c[std::size_t(i)].z};
+  }
+  std::size_t k = std::size_t(n);
+  for (const std::uint64_t key : host_dirty_) {
+    const auto it = host_.find(key);
+    if (it == host_.end()) continue;
+    DecodeBrickKey(key, &out.coords[k][0], &out.coords[k][1], &out.coords[k][2]);
+    std::memcpy(out.voxels.data() + k * B, it->second.data(), B);
+    ++k;
+  }
+  out.coords.resize(k);
+  out.voxels.resize(k * B);
+  host_dirty_.clear();
+  return out;
 }
 
 void DeviceVolume::Extend(const BrickCoord* c, int n) {

@@ -11,6 +11,8 @@
 
 #include "common/cuda_runtime.h"
 #include "common/se3.h"
+#include "mesh/incremental_mesh.h"
+#include "mesh/mesh.h"
 #include "pipeline/backend.h"
 #include "pipeline/frame_source.h"
 #include "pipeline/pipeline.h"
@@ -326,9 +328,16 @@ TEST(GpuStreaming, ARoomInASmallGpuBudgetIsAsTrueAsWithoutOne) {
   std::size_t most_on_gpu = 0;
   double ate_full = 0, ate_small = 0;
   const Pose T0inv = frames[0].T_world_camera_true->inverse();
+  // The studio's surface, from the bricks each stretch changed (on the GPU, and moved out to
+  // host memory and back in the small budget).
+  mesh::IncrementalMesher inc_full(o.volume), inc_small(o.volume);
   for (int k = 0; k < n; ++k) {
     const FrameReport rf = full.Process(frames[std::size_t(k)]);
     const FrameReport rs = small.Process(frames[std::size_t(k)]);
+    if (k % 10 == 9 || k + 1 == n) {
+      inc_full.Apply(full.ChangedBricks());
+      inc_small.Apply(small.ChangedBricks());
+    }
     most_on_gpu = std::max(most_on_gpu, small.volume_stats().streaming.gpu_bricks);
     const Pose truth = T0inv * *frames[std::size_t(k)].T_world_camera_true;
     ate_full = std::max(ate_full, (truth.translation() - rf.T_world_camera.translation()).norm());
@@ -337,8 +346,16 @@ TEST(GpuStreaming, ARoomInASmallGpuBudgetIsAsTrueAsWithoutOne) {
   const VolumeStats vf = full.volume_stats(), vs = small.volume_stats();
   const sim::Scene scene = sim::Scene::Build("room", 1);
   const Pose T0 = *frames[0].T_world_camera_true;
-  const eval::ModelError ef = eval::CompareModel(full.ExtractMesh(), scene, T0);
-  const eval::ModelError es = eval::CompareModel(small.ExtractMesh(), scene, T0);
+  const mesh::Mesh mf = full.ExtractMesh(), ms = small.ExtractMesh();
+  const eval::ModelError ef = eval::CompareModel(mf, scene, T0);
+  const eval::ModelError es = eval::CompareModel(ms, scene, T0);
+  const mesh::Mesh pf = inc_full.Assemble(), ps = inc_small.Assemble();
+  std::printf("incremental surface: %zu / %zu triangles (whole extraction %zu / %zu), %zu / %zu bricks\n",
+              pf.triangles.size(), ps.triangles.size(), mf.triangles.size(), ms.triangles.size(), inc_full.bricks(),
+              inc_small.bricks());
+  EXPECT_EQ(pf.triangles.size(), mf.triangles.size());
+  EXPECT_EQ(ps.triangles.size(), ms.triangles.size());
+  EXPECT_EQ(inc_small.bricks(), vs.allocated_bricks);
   std::printf("GPU budget %zu bricks: at most %zu on the GPU; %zu bricks in all (unlimited: %zu), %zu in host memory at "
               "the end; %ld moved out, %ld back; mesh median distance %.2f mm (unlimited %.2f), %zu vertices (%zu); "
               "max trajectory error %.2f cm (%.2f)\n",

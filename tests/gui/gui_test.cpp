@@ -455,30 +455,74 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
 TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   WorkerOnThread wt;
   std::vector<std::shared_ptr<const Snapshot>> got;
+  std::vector<std::pair<std::shared_ptr<const mesh::Mesh>, bool>> meshes;
   QObject ctx;
   QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
+  QObject::connect(wt.w, &ScanWorker::meshUpdated, &ctx,
+                   [&](std::shared_ptr<const mesh::Mesh> m, bool last) { meshes.push_back({m, last}); });
   QSignalSpy finished(wt.w, &ScanWorker::finished);
   ScanSettings s;
   s.source = "synthetic:frames=12,size=160x120,ae=flicker";
   s.pipeline.volume.voxel_m = 0.047f;
   s.mesh_every_frames = 5;
   s.mesh_min_interval_ms = 0;
+  s.images_min_interval_ms = 0;  // every frame's images
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
   ASSERT_TRUE(Arrived(finished, 120000));
-  QCoreApplication::processEvents();
+  QTRY_VERIFY_WITH_TIMEOUT(!meshes.empty() && meshes.back().second, 60000);
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i]->report.index, int(i));
     EXPECT_EQ(got[i]->trajectory.size(), i + 1);
     EXPECT_EQ(got[i]->images.radiance.width(), 160);
+    EXPECT_EQ(got[i]->images.render.normal.width(), 160);
     EXPECT_EQ(got[i]->color.width(), 160);
   }
-  ASSERT_TRUE(got.back()->mesh);
-  EXPECT_GT(got.back()->mesh->triangles.size(), 1000u);
   EXPECT_GT(got.back()->volume_bytes, 0u);
   // Snapshots are independent copies: the first is untouched by later frames.
   EXPECT_EQ(got[0]->trajectory.size(), 1u);
+  // The surface came from the mesher's thread, refreshed along the scan; the last one is the
+  // whole model's surface (the triangles of a full extraction).
+  EXPECT_GE(meshes.size(), 2u);
+  EXPECT_GT(meshes.back().first->triangles.size(), 1000u);
+  QTemporaryDir dir;
+  QSignalSpy done(wt.w, &ScanWorker::exportDone);
+  const QString ply = dir.filePath("whole.ply");
+  wt.Call([&wt, ply] { wt.w->ExportMesh(ply); });
+  ASSERT_TRUE(Arrived(done, 60000));
+  EXPECT_EQ(io::ReadPly(ply.toStdString()).triangles.size(), meshes.back().first->triangles.size());
+}
+
+// Snapshots carry only the stage images of the views on screen, and those at most at the
+// display's rate; the first and the last frame always carry them.
+TEST(ScanWorker, SnapshotsCarryOnlyTheShownImagesAtTheDisplayRate) {
+  WorkerOnThread wt;
+  std::vector<std::shared_ptr<const Snapshot>> got;
+  QObject ctx;
+  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
+  QSignalSpy finished(wt.w, &ScanWorker::finished);
+  ScanSettings s;
+  s.source = "synthetic:frames=10,size=160x120,ae=flicker";
+  s.pipeline.volume.voxel_m = 0.047f;
+  s.images_min_interval_ms = 600000;  // none between the first and the last frame
+  pipeline::ViewSet shown;
+  shown.confidence = shown.nr = shown.depth = false;  // the radiance and model views only
+  wt.w->SetShownViews(shown);
+  wt.Call([&wt, s] { wt.w->Configure(s); });
+  wt.Call([&wt] { wt.w->Start(); });
+  ASSERT_TRUE(Arrived(finished, 120000));
+  QCoreApplication::processEvents();
+  ASSERT_EQ(got.size(), 10u);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const bool carried = i == 0 || i + 1 == got.size();
+    EXPECT_EQ(got[i]->images.radiance.width(), carried ? 160 : 0) << i;
+    EXPECT_EQ(got[i]->images.render.radiance.width(), carried ? 160 : 0) << i;
+    EXPECT_EQ(got[i]->images.confidence.width(), 0) << i;
+    EXPECT_EQ(got[i]->images.nr.width(), 0) << i;
+    EXPECT_EQ(got[i]->images.depth.width(), 0) << i;
+    EXPECT_EQ(got[i]->color.width(), 160) << i;  // the colour comes with every frame
+  }
 }
 
 TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {

@@ -4,10 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <tuple>
 
 #include "common/error.h"
 #include "support/sim_frames.h"
 #include "support/test_support.h"
+#include "mesh/incremental_mesh.h"
+#include "mesh/mesh.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/scan_session.h"
 #include "sim/builtin_sensor.h"
@@ -117,6 +120,78 @@ TEST(ScanSession, RunsAreReproducible) {
     EXPECT_EQ(a.poses()[std::size_t(i)].matrix(), b.poses()[std::size_t(i)].matrix()) << "frame " << i;
     EXPECT_EQ(a.reports()[std::size_t(i)].exposure_ratio, b.reports()[std::size_t(i)].exposure_ratio);
   }
+}
+
+// The studio's surface, kept up to date from the bricks each stretch of frames changed, holds
+// exactly the triangles of a whole extraction of the same model; each update meshes only the
+// bricks a change reaches; a stretch without frames sends nothing.
+TEST(IncrementalMesh, BricksChangedAlongTheScanGiveTheWholeExtractionsTriangles) {
+  const auto frames = Inputs(40);
+  PipelineOptions o;
+  ScanSession s(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  mesh::IncrementalMesher mesher(o.volume);
+  std::size_t meshed = 0, sent = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    s.Process(frames[i]);
+    if (i % 8 == 7 || i + 1 == frames.size()) {
+      const volume::BrickSet changed = s.pipeline().ChangedBricks();
+      if (i == 7) {
+        EXPECT_EQ(changed.size(), s.pipeline().volume_stats().allocated_bricks);  // the first: every brick
+      } else {
+        EXPECT_GT(changed.size(), 0u);
+        EXPECT_LT(changed.size(), s.pipeline().volume_stats().allocated_bricks);  // later: those seen since
+      }
+      sent += changed.size();
+      meshed += mesher.Apply(changed);
+    }
+  }
+  EXPECT_EQ(s.pipeline().ChangedBricks().size(), 0u);
+  EXPECT_EQ(mesher.bricks(), s.pipeline().volume_stats().allocated_bricks);
+  const mesh::Mesh whole = s.pipeline().ExtractMesh();
+  const mesh::Mesh pieces = mesher.Assemble();
+  ASSERT_GT(whole.triangles.size(), 10000u);
+  ASSERT_EQ(pieces.triangles.size(), whole.triangles.size());
+  EXPECT_GE(pieces.position.size(), whole.position.size());
+  EXPECT_LT(pieces.position.size(), whole.position.size() * 13 / 10);  // border vertices repeated
+  // Each triangle as its corners' coordinates, starting at the smallest corner (orientation
+  // kept): the two lists, sorted, are equal bit for bit.
+  const auto corners = [](const mesh::Mesh& m) {
+    std::vector<std::array<float, 9>> out;
+    for (const auto& t : m.triangles) {
+      std::array<Float3, 3> c = {m.position[std::size_t(t[0])], m.position[std::size_t(t[1])], m.position[std::size_t(t[2])]};
+      const auto less = [](const Float3& a, const Float3& b) {
+        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+      };
+      int first = 0;
+      for (int k = 1; k < 3; ++k)
+        if (less(c[std::size_t(k)], c[std::size_t(first)])) first = k;
+      std::array<float, 9> r;
+      for (int k = 0; k < 3; ++k) {
+        const Float3& p = c[std::size_t((first + k) % 3)];
+        r[std::size_t(3 * k)] = p.x, r[std::size_t(3 * k + 1)] = p.y, r[std::size_t(3 * k + 2)] = p.z;
+      }
+      out.push_back(r);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_TRUE(corners(pieces) == corners(whole));
+  // Normals and radiance of the repeated vertices are those of the whole extraction.
+  std::map<std::array<float, 3>, std::size_t> at;
+  for (std::size_t i = 0; i < whole.position.size(); ++i) at[{whole.position[i].x, whole.position[i].y, whole.position[i].z}] = i;
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < pieces.position.size(); ++i) {
+    const auto it = at.find({pieces.position[i].x, pieces.position[i].y, pieces.position[i].z});
+    ASSERT_TRUE(it != at.end());
+    const std::size_t j = it->second;
+    same += pieces.normal[i].x == whole.normal[j].x && pieces.normal[i].y == whole.normal[j].y &&
+            pieces.normal[i].z == whole.normal[j].z && pieces.radiance[i].x == whole.radiance[j].x;
+  }
+  EXPECT_EQ(same, pieces.position.size());
+  // Updates after the first meshed fewer bricks than the model holds each time.
+  EXPECT_LT(meshed, 5 * mesher.bricks());
+  std::printf("incremental mesh: %zu bricks sent over 5 updates, %zu meshed, model %zu bricks, %zu triangles\n", sent,
+              meshed, mesher.bricks(), pieces.triangles.size());
 }
 
 }  // namespace
