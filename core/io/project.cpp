@@ -262,6 +262,8 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
   resume["photo_residuals"] = point.photo_residuals;
   resume["lost_run"] = point.lost_run;
   resume["exposure_drifts"] = point.exposure_drifts;
+  if (!point.raycast_guide.empty())
+    resume["raycast_guide"] = {point.raycast_guide.width(), point.raycast_guide.height()};
   json reloc = json::array();
   for (const pipeline::RelocEntry& e : point.reloc)
     reloc.push_back({{"frame", e.frame}, {"T_world_camera", PoseToJson(e.T_world_camera)}, {"width", e.code.width},
@@ -313,6 +315,8 @@ void SaveProject(const fs::path& file, pipeline::ScanSession& session, const Pro
       const std::vector<std::uint8_t> png = EncodeColorPng(e.thumbnail);
       w.Add("RTHB", png.data(), png.size());
     }
+    if (!point.raycast_guide.empty())
+      w.Add("RCGD", point.raycast_guide.data(), point.raycast_guide.size() * sizeof(float));
     if (!point.reference_color.empty()) {
       const std::vector<std::uint8_t> png = EncodeColorPng(point.reference_color);
       w.Add("REFC", png.data(), png.size());
@@ -405,6 +409,20 @@ Project LoadProject(const fs::path& file) {
       e.thumbnail = DecodeColorPng(file, thumbs[i]->data, "relocalisation view " + std::to_string(i));
       p.resume.reloc.push_back(std::move(e));
     }
+    // The last ray cast's start guide (absent before it existed, or where it started at near).
+    if (r.contains("raycast_guide")) {
+      const auto wh = r.at("raycast_guide").get<std::vector<int>>();
+      const Chunk& gc = Need(file, chunks, "RCGD", "the ray cast's start guide");
+      const int w = p.sensor.camera.width, h = p.sensor.camera.height;
+      if (wh.size() != 2 || wh[0] != volume::GuideTiles(w) || wh[1] != volume::GuideTiles(h) ||
+          gc.data.size() != std::size_t(wh[0]) * std::size_t(wh[1]) * sizeof(float))
+        throw InputError(file, "the ray cast's start guide does not fit the camera's size");
+      p.resume.raycast_guide = Image<float>(wh[0], wh[1]);
+      std::memcpy(p.resume.raycast_guide.data(), gc.data.data(), gc.data.size());
+      for (std::size_t i = 0; i < p.resume.raycast_guide.size(); ++i)
+        if (!(p.resume.raycast_guide[i] >= 0.f && p.resume.raycast_guide[i] < 1e6f))
+          throw InputError(file, "the ray cast's start guide holds a depth out of range");
+    }
     if (r.at("reference_frame").get<bool>()) {
       const Chunk& rc = Need(file, chunks, "REFC", "the reference frame's colour");
       const Chunk& rd = Need(file, chunks, "REFD", "the reference frame's depth");
@@ -462,6 +480,7 @@ std::unique_ptr<pipeline::ScanSession> ResumeSession(const Project& p,
   point.first_exposure_ms = p.resume.first_exposure_ms;
   point.reference_color = p.resume.reference_color.Clone();
   point.reference_depth = p.resume.reference_depth.Clone();
+  point.raycast_guide = p.resume.raycast_guide.Clone();
   point.anchored = p.resume.anchored;
   point.recovering = p.resume.recovering;
   point.confirmed = p.resume.confirmed;

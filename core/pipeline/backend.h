@@ -105,8 +105,16 @@ class Backend {
   virtual std::string VolumeFullReason() = 0;  // why, naming the limit ("" while not full)
   virtual std::array<Float3, 2> VolumeBounds() = 0;  // the allocated bricks' world box
   virtual StreamingStats Streaming() { return {}; }
-  // 6. Ray casts the model from a pose (kept as the last rendering).
-  virtual void Raycast(const Pose& T_world_camera) = 0;
+  // 6. Ray casts the model from a pose (kept as the last rendering). Where the rays start:
+  // kNear: at volume.raycast_near_m; kDepth: near the surface this frame's filtered depth
+  // shows (the pose must be the frame's: the frame just fused), each tile of rays from its
+  // nearest depth less the truncation (RaycastGuide); kKept: as the guide set last.
+  enum class RaycastStart { kNear, kDepth, kKept };
+  virtual void Raycast(const Pose& T_world_camera, RaycastStart start) = 0;
+  // The last ray cast's guide (host copy; empty when it started at near), and one to use
+  // with kKept (a resumed scan's).
+  virtual Image<float> RaycastGuide() = 0;
+  virtual void SetRaycastGuide(const Image<float>& guide) = 0;
   virtual bool HasRender() const = 0;
   // The tracking reference, with the pose it belongs to: the last ray cast (frame to model),
   // or the live pyramid placed at a pose (frame to frame). The ray cast's normalized radiance

@@ -12,6 +12,7 @@
 #include "pipeline/backend.h"
 #include "radiometry/radiance_driver.h"
 #include "tracking/pyramid_driver.h"
+#include "volume/raycast_driver.h"
 #include "pipeline/pipeline.h"
 
 namespace hdrf::pipeline {
@@ -101,13 +102,21 @@ class CpuBackend final : public Backend {
   std::string VolumeFullReason() override { return volume_.full_reason(); }
   std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
 
-  void Raycast(const Pose& T) override {
-    render_ = volume_.Raycast(cam_, T);
+  void Raycast(const Pose& T, RaycastStart start) override {
+    if (start == RaycastStart::kDepth) {
+      guide_ = Image<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
+      volume::RaycastGuide(par::Host{}, View(depth_), o_.volume.truncation_m(), View(guide_));
+    } else if (start == RaycastStart::kNear) {
+      guide_ = Image<float>();
+    }
+    render_ = volume_.Raycast(cam_, T, &guide_);
     render_pose_ = T;
     has_render_ = true;
     render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
   }
   bool HasRender() const override { return has_render_; }
+  Image<float> RaycastGuide() override { return guide_.Clone(); }
+  void SetRaycastGuide(const Image<float>& guide) override { guide_ = guide.Clone(); }
 
   void ReferenceFromRender(const Float3& clip) override {
     // The ray cast's vertices and normals are in world coordinates already; the reference
@@ -224,6 +233,7 @@ class CpuBackend final : public Backend {
   bool has_render_ = false;
   std::size_t last_visible_ = 0;
   std::uint32_t changes_seen_ = 0;  // the volume's change clock at the last ChangedBricks
+  Image<float> guide_;              // the last ray cast's start guide (empty: from near)
 };
 
 }  // namespace

@@ -159,13 +159,27 @@ class CudaBackend final : public Backend {
     return {volume_.gpu_bricks(), volume_.host_bricks(), volume_.gpu_bytes(), volume_.swapped_out(), volume_.swapped_in()};
   }
 
-  void Raycast(const Pose& T) override {
-    volume_.Raycast({cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m}, render_.views());
+  void Raycast(const Pose& T, RaycastStart start) override {
+    if (start == RaycastStart::kDepth) {
+      if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
+      volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_.view());
+      guided_ = true;
+    } else if (start == RaycastStart::kNear) {
+      guided_ = false;
+    }
+    volume::RaycastArgs a{cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m};
+    if (guided_) a.start = guide_.view();
+    volume_.Raycast(a, render_.views());
     render_pose_ = T;
     has_render_ = true;
     render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
   }
   bool HasRender() const override { return has_render_; }
+  Image<float> RaycastGuide() override { return guided_ ? guide_.ToHost() : Image<float>(); }
+  void SetRaycastGuide(const Image<float>& guide) override {
+    guided_ = !guide.empty();
+    if (guided_) guide_ = DeviceImage<float>(guide);
+  }
 
   void ReferenceFromRender(const Float3& clip) override {
     CopyD2D(ref_[0]->vertex, render_.vertex);
@@ -276,6 +290,8 @@ class CudaBackend final : public Backend {
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
   DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
+  DeviceImage<float> guide_;  // the ray cast's start guide (RaycastGuide), used while guided_
+  bool guided_ = false;
   DeviceImage<float> conf_track_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
   bool render_nr_ready_ = false;  // render_.nr holds the ray cast's NR for render_nr_clip_
   Float3 render_nr_clip_{};

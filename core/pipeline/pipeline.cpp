@@ -369,7 +369,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       searched = true;
       bool first = true;
       for (const Pose& start : {carried, pose_}) {
-        b.Raycast(start);
+        b.Raycast(start, Backend::RaycastStart::kNear);
         ReferenceFromModel(clip);
         const tracking::TrackResult rc = track(start);
         const Verdict vc = Verify(rc, in, true);
@@ -399,7 +399,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       }
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const RelocEntry* e = candidates[c];
-        b.Raycast(e->T_world_camera);
+        b.Raycast(e->T_world_camera, Backend::RaycastStart::kNear);
         ReferenceFromModel(clip);
         std::vector<Pose> starts = {e->T_world_camera};
         if (c == 0) {
@@ -497,7 +497,9 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   const auto t5 = now();
   // 6. Ray cast the model from the pose, and the next frame's reference: the ray cast (frame
   // to model) or this frame where its pose was accepted (frame to frame).
-  if (rep.fused || accepted || searched || !b.HasRender()) b.Raycast(pose_);
+  // A fused frame's depth was taken at this pose: the rays start near the surface it shows.
+  if (rep.fused || accepted || searched || !b.HasRender())
+    b.Raycast(pose_, rep.fused ? Backend::RaycastStart::kDepth : Backend::RaycastStart::kNear);
   if (reference_from_model_) {
     ReferenceFromModel(clip);
   } else if (accepted || !b.HasReference()) {
@@ -525,6 +527,7 @@ ResumePoint Pipeline::resume_point() const {
   p.lost_run = lost_run_;
   p.exposure_drifts = exposure_drifts_;
   p.reloc = reloc_.entries();
+  p.raycast_guide = backend_->RaycastGuide();
   if (!reference_from_model_) {
     p.reference_color = reference_color_.Clone();
     p.reference_depth = reference_depth_.Clone();
@@ -566,7 +569,11 @@ void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
   reloc_.Restore(p.reloc);
   if (p.frames == 0) return;
   // The state the last Process() left: the ray cast from the last pose, and the reference.
-  if (model.allocated_bricks() > 0) b.Raycast(pose_);
+  if (model.allocated_bricks() > 0) {
+    // The same ray cast as the scan's last one, from where its rays started.
+    b.SetRaycastGuide(p.raycast_guide);
+    b.Raycast(pose_, p.raycast_guide.empty() ? Backend::RaycastStart::kNear : Backend::RaycastStart::kKept);
+  }
   if (reference_from_model_) {
     if (b.HasRender()) b.ReferenceFromRender(kNoClip);
     ref_clip_ = kNoClip;

@@ -101,6 +101,8 @@ struct ResumePoint {
   // (empty when the scan tracks against the model, whose ray cast is the reference).
   ColorImage reference_color;
   DepthImage reference_depth;
+  // Where the last ray cast's rays started (Backend::RaycastGuide; empty: at near).
+  Image<float> raycast_guide;
   // Pose verification and recovery: whether a frame anchored the model, whether the scan is
   // recovering from a loss (and how many frames have verified since), the recent residuals
   // and exposure drifts the next poses are judged against, and the relocalisation views.

@@ -21,6 +21,9 @@ struct BrickCoord {
   int x, y, z;
 };
 
+// RaycastGuide (raycast_driver.h) on the GPU: device views.
+void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const ImageView<float>& tiles);
+
 class DeviceVolume {
  public:
   explicit DeviceVolume(const VolumeOptions& o);

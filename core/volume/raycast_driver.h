@@ -14,6 +14,30 @@ struct RenderingViews {
   ImageView<float> nr, depth;
 };
 
+// The ray cast's guide from a depth image taken at the pose the model is ray cast from (the
+// frame just fused): per tile of kGuideTile x kGuideTile pixels, the nearest depth less
+// `margin_m` where every pixel of the tile has depth, else 0 (the tile's rays start at near).
+// A surface of the model nearer than that is one the camera did not see in front of it now.
+// `tiles` is ceil(w / kGuideTile) x ceil(h / kGuideTile).
+template <typename Device>
+void RaycastGuide(Device d, ImageView<const float> depth, float margin_m, const ImageView<float>& tiles) {
+  const ImageView<const float> in = depth;
+  const ImageView<float> out = tiles;
+  const float margin = margin_m;
+  par::ForEachPixel(d, tiles.width, tiles.height, HDRF_LAMBDA(int tx, int ty) {
+    float lo = 1e30f;
+    bool all = true;
+    for (int y = ty * kGuideTile; y < ty * kGuideTile + kGuideTile && y < in.height; ++y)
+      for (int x = tx * kGuideTile; x < tx * kGuideTile + kGuideTile && x < in.width; ++x) {
+        const float z = in(x, y);
+        if (!(z > 0.f)) all = false;
+        lo = z < lo ? z : lo;
+      }
+    const float s = lo - margin;
+    out(tx, ty) = all && s > 0.f ? s : 0.f;
+  });
+}
+
 template <typename Device, typename V>
 void RaycastInto(Device d, const VolumeView<V>& volume, const RaycastArgs& a, const RenderingViews& out) {
   const VolumeView<V> vv = volume;

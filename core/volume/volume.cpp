@@ -284,7 +284,7 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   return st;
 }
 
-Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc) const {
+Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, const Image<float>* guide) const {
   Rendering r;
   const int w = cam.width, h = cam.height;
   r.vertex = Image<Float3>(w, h);
@@ -292,7 +292,8 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc) co
   r.radiance = RadianceImage(w, h);
   r.nr = Image<float>(w, h);
   r.depth = DepthImage(w, h);
-  const RaycastArgs a{cam, ToRigidTransform(T_wc), o_.raycast_near_m, o_.raycast_far_m};
+  RaycastArgs a{cam, ToRigidTransform(T_wc), o_.raycast_near_m, o_.raycast_far_m};
+  if (guide && !guide->empty()) a.start = View(*guide);
   const RenderingViews out{View(r.vertex), View(r.normal), View(r.radiance), View(r.nr), View(r.depth)};
   VisitEncoding(o_.encoding, [&](auto tag) { RaycastInto(par::Host{}, view<decltype(tag)>(), a, out); });
   return r;

@@ -137,7 +137,8 @@ class Volume {
     Image<float> nr;
     DepthImage depth;
   };
-  Rendering Raycast(const PinholeCamera& cam, const Pose& T_world_camera) const;
+  // `guide` (raycast_driver.h, RaycastGuide): where each tile's rays may start; none: near.
+  Rendering Raycast(const PinholeCamera& cam, const Pose& T_world_camera, const Image<float>* guide = nullptr) const;
 
   // Brick coordinates of each pool slot, in allocation order (for meshing).
   const std::vector<std::array<int, 3>>& bricks() const { return brick_coord_; }

@@ -348,6 +348,10 @@ std::size_t DeviceVolume::gpu_bytes() const {
          std::size_t(capacity_) * 512 * std::size_t(vbytes_);
 }
 
+void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const ImageView<float>& tiles) {
+  RaycastGuide(par::Gpu{}, depth, margin_m, tiles);
+}
+
 void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out) const {
   VisitEncoding(options().encoding, [&](auto tag) { RaycastInto(par::Gpu{}, view<decltype(tag)>(), a, out); });
 }

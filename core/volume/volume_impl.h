@@ -400,7 +400,12 @@ struct RaycastArgs {
   PinholeCamera cam;
   RigidTransform T_world_camera;
   float near_m, far_m;
+  // Where the rays may start (raycast_driver.h, RaycastGuide): per tile of kGuideTile x
+  // kGuideTile pixels, a depth (m) no surface of the tile lies before; 0 or no image: near_m.
+  ImageView<const float> start{};
 };
+inline constexpr int kGuideTile = 8;
+inline int GuideTiles(int pixels) { return (pixels + kGuideTile - 1) / kGuideTile; }  // tiles of a side
 struct RayHit {
   Float3 vertex{0, 0, 0}, normal{0, 0, 0}, radiance{0, 0, 0};
   float nr = 0, depth = 0;
@@ -414,8 +419,14 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
   const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));
   const Float3 dw = a.T_world_camera.Rotate(dc), o = a.T_world_camera.t;
-  // The volume has no bounds: the ray runs from near to far, skipping empty space.
-  const float t0 = a.near_m, t1 = a.far_m;
+  // The volume has no bounds: the ray runs from near (or from where its tile's guide says the
+  // surface can begin) to far, skipping empty space.
+  float t0 = a.near_m;
+  const float t1 = a.far_m;
+  if (a.start.data) {
+    const float d = a.start(x / kGuideTile, y / kGuideTile) / dc.z;  // depth -> distance along the ray
+    t0 = d > t0 ? d : t0;
+  }
   const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
                           fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
   // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.

@@ -75,6 +75,17 @@ Scan ScanFrames(const std::vector<sim::SimFrame>& frames, const pipeline::Pipeli
       EXPECT_EQ(p.resume.photo_residuals, rp.photo_residuals);
       EXPECT_EQ(p.resume.exposure_drifts, rp.exposure_drifts);
       EXPECT_FALSE(rp.reloc.empty());
+      // Where the last ray cast's rays started (near the fused frame's depth) comes back too.
+      EXPECT_FALSE(rp.raycast_guide.empty());
+      EXPECT_EQ(p.resume.raycast_guide.width(), rp.raycast_guide.width());
+      EXPECT_EQ(p.resume.raycast_guide.height(), rp.raycast_guide.height());
+      std::size_t guide_differ = 0, guided = 0;
+      for (std::size_t j = 0; j < std::min(rp.raycast_guide.size(), p.resume.raycast_guide.size()); ++j) {
+        guide_differ += p.resume.raycast_guide[j] != rp.raycast_guide[j];
+        guided += rp.raycast_guide[j] > 0;
+      }
+      EXPECT_EQ(guide_differ, 0u);
+      EXPECT_GT(guided, rp.raycast_guide.size() / 4);
       EXPECT_EQ(p.resume.reloc.size(), rp.reloc.size());
       for (std::size_t k = 0; k < std::min(p.resume.reloc.size(), rp.reloc.size()); ++k) {
         const pipeline::RelocEntry &a = p.resume.reloc[k], &b = rp.reloc[k];
