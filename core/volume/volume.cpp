@@ -236,18 +236,38 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   const RigidTransform T = ToRigidTransform(in.T_world_camera);
   const DepthImage& depth = *in.depth_m;
   // 1. Bricks within the truncation band of every depth sample (every 2nd pixel), in key
-  // order; new ones take the next slots in that order (as on the GPU).
+  // order; new ones take the next slots in that order (as on the GPU). Each distinct brick is
+  // kept once as it is named (a per-frame open-addressing set, grown as it fills), so that
+  // only the distinct ones are sorted.
   std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> set(std::size_t(1) << 12, kEmptyKey);
   std::uint64_t last = kEmptyKey;
+  const auto insert = [&](std::uint64_t k) {
+    std::size_t mask = set.size() - 1, h = HashBrickKey(k) & mask;
+    while (set[h] != kEmptyKey) {
+      if (set[h] == k) return;
+      h = (h + 1) & mask;
+    }
+    set[h] = k;
+    keys.push_back(k);
+    if (2 * keys.size() > set.size()) {  // at most half full: twice the room, the keys again
+      set.assign(set.size() * 2, kEmptyKey);
+      mask = set.size() - 1;
+      for (const std::uint64_t e : keys) {
+        std::size_t g = HashBrickKey(e) & mask;
+        while (set[g] != kEmptyKey) g = (g + 1) & mask;
+        set[g] = e;
+      }
+    }
+  };
   for (int y = 0; y < depth.height(); y += 2)
     for (int x = 0; x < depth.width(); x += 2)
       ForBricksAlongRay(args, T, x, y, [&](int bx, int by, int bz) {
         const std::uint64_t k = BrickKey(bx, by, bz);
-        if (k != last) keys.push_back(k);
+        if (k != last) insert(k);
         last = k;
       });
   std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<int> todo;
   todo.reserve(keys.size());
   for (const std::uint64_t k : keys) {
