@@ -57,6 +57,8 @@ class MainWindow : public QMainWindow {
   // "model_radiance", "model_normals"), the 3-D view, the worker.
   ImageView* view(const QString& name) const { return views_.value(name, nullptr); }
   VtkView* view3d() const { return view3d_; }
+  // The 3-D view shows the surface as the scan stopped (the mesher's last refresh).
+  bool surface_final() const { return mesh_shown_ && mesh_shown_ == mesh_latest_ && mesh_latest_last_; }
   QDockWidget* dock(const QString& name) const { return docks_.value(name, nullptr); }
   SensorPanel* sensor_panel() const { return sensor_panel_; }
   std::shared_ptr<const Snapshot> latest() const { return latest_; }

@@ -584,6 +584,8 @@ void ScanWorker::Lost() {
   FinishRecording(tr("%1 was unplugged").arg(who));
   live_ = nullptr;
   source_.reset();
+  // The surface of the model as it is kept.
+  if (was_running && session_ && session_->frames() > 0) RequestMesh(true);
   const int frames = session_ ? session_->frames() : 0;
   const QString msg = was_running
       ? tr("Camera %1 was unplugged: the scan is paused after %2 frames and the model is kept. "

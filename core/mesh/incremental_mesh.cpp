@@ -4,6 +4,7 @@
 #include <array>
 #include <vector>
 
+#include "mesh/mesh_assemble.h"
 #include "mesh/mesh_impl.h"
 
 namespace hdrf::mesh {
@@ -14,31 +15,14 @@ namespace {
 // same cube triangles, vertices and orientation, with the vertices this brick's cubes use.
 template <typename V>
 Mesh MeshBrick(const volume::VolumeView<V>& view, const std::array<int, 3>& b) {
-  Mesh m;
   std::vector<std::array<std::uint64_t, 3>> tris;
   std::uint64_t t[kMaxCubeTriangles][3];
   for (int i = 0; i < 512; ++i) {
     const int nt = CubeTriangles(view, b[0] * 8 + (i & 7), b[1] * 8 + ((i >> 3) & 7), b[2] * 8 + (i >> 6), t);
     for (int k = 0; k < nt; ++k) tris.push_back({t[k][0], t[k][1], t[k][2]});
   }
-  if (tris.empty()) return m;
-  std::vector<std::uint64_t> keys;
-  keys.reserve(tris.size() * 3);
-  for (const auto& tr : tris) keys.insert(keys.end(), tr.begin(), tr.end());
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  m.position.resize(keys.size());
-  m.normal.resize(keys.size());
-  m.radiance.resize(keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) EdgeVertex(view, keys[i], &m.position[i], &m.normal[i], &m.radiance[i]);
-  m.triangles.resize(tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    std::int32_t* idx = m.triangles[i].data();
-    for (int k = 0; k < 3; ++k)
-      idx[k] = std::int32_t(std::lower_bound(keys.begin(), keys.end(), tris[i][std::size_t(k)]) - keys.begin());
-    OrientTriangle(m.position.data(), m.normal.data(), idx);
-  }
-  return m;
+  if (tris.empty()) return Mesh{};
+  return MeshFromEdgeTriangles(view, tris, /*threads=*/false);
 }
 
 }  // namespace

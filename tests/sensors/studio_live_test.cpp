@@ -164,6 +164,8 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
   QTRY_VERIFY_WITH_TIMEOUT(w.error_text().contains("unplugged"), 20000);
   EXPECT_TRUE(w.error_text().contains("model is kept")) << w.error_text().toStdString();
   const int at_unplug = Scanned(w);
+  // The surface of the model as it was at the unplug (meshed off the scan's thread) is shown.
+  QTRY_VERIFY_WITH_TIMEOUT(w.surface_final(), 20000);
   const auto triangles = w.view3d()->mesh_triangles();
   QTest::qWait(1500);
   EXPECT_EQ(Scanned(w), at_unplug) << "no frame may be scanned while the camera is away";
