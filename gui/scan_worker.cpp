@@ -30,14 +30,14 @@ std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) 
 
 void MeshWorker::Reset(const volume::VolumeOptions& o) { mesher_ = std::make_unique<mesh::IncrementalMesher>(o); }
 
-void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last) {
+void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation) {
   std::shared_ptr<const mesh::Mesh> m;
   if (mesher_) {
     mesher_->Apply(*changed);
     m = std::make_shared<const mesh::Mesh>(mesher_->Assemble());
   }
   busy = false;
-  if (m) emit meshReady(std::move(m), last);
+  if (m) emit meshReady(std::move(m), last, generation);
 }
 
 ScanWorker::ScanWorker() {
@@ -48,7 +48,8 @@ ScanWorker::ScanWorker() {
   mesher_->moveToThread(mesh_thread_);
   // The mesher yields to the scan: below its priority (a nice value for this thread alone).
   connect(mesh_thread_, &QThread::started, mesher_, [] { setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 5); });
-  connect(mesher_, &MeshWorker::meshReady, this, [this](std::shared_ptr<const mesh::Mesh> m, bool last) {
+  connect(mesher_, &MeshWorker::meshReady, this, [this](std::shared_ptr<const mesh::Mesh> m, bool last, int generation) {
+    if (generation != mesh_generation_) return;  // the surface of a model since dropped
     OnMesh(m);
     emit meshUpdated(std::move(m), last);
   });
@@ -81,6 +82,7 @@ pipeline::ViewSet ScanWorker::ShownViews() const {
 void ScanWorker::ResetMesher() {
   mesh_.reset();
   mesh_frame_ = -1;
+  ++mesh_generation_;
   mesher_->busy = false;
   const volume::VolumeOptions o = session_->pipeline().options().volume;
   QMetaObject::invokeMethod(mesher_, [m = mesher_, o] { m->Reset(o); }, Qt::QueuedConnection);
@@ -92,7 +94,8 @@ void ScanWorker::RequestMesh(bool last) {
   mesher_->busy = true;
   mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
   mesh_frame_ = session_->frames() - 1;
-  QMetaObject::invokeMethod(mesher_, [m = mesher_, changed, last] { m->Apply(changed, last); }, Qt::QueuedConnection);
+  QMetaObject::invokeMethod(
+      mesher_, [m = mesher_, changed, last, g = mesh_generation_] { m->Apply(changed, last, g); }, Qt::QueuedConnection);
 }
 
 void ScanWorker::OnMesh(std::shared_ptr<const mesh::Mesh> m) { mesh_ = std::move(m); }

@@ -80,9 +80,11 @@ class MeshWorker : public QObject {
   std::atomic<bool> busy{false};  // a refresh queued or being meshed
   // Both run on the mesher's thread (queued calls).
   void Reset(const volume::VolumeOptions& o);
-  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last);
+  // `generation`: the model the bricks came from (ScanWorker counts them), sent back with the
+  // surface so that one meshed from a model since dropped is not shown.
+  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation);
  signals:
-  void meshReady(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last);
+  void meshReady(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last, int generation);
 
  private:
   std::unique_ptr<mesh::IncrementalMesher> mesher_;
@@ -223,6 +225,7 @@ class ScanWorker : public QObject {
   std::shared_ptr<const mesh::Mesh> mesh_;
   std::int64_t mesh_time_ms_ = 0, images_time_ms_ = 0;
   int mesh_frame_ = -1;             // the frame of the last mesh request
+  int mesh_generation_ = 0;         // the model the mesher works on (one more at each reset)
   QThread* mesh_thread_ = nullptr;
   MeshWorker* mesher_ = nullptr;    // lives on mesh_thread_
   std::atomic<unsigned> shown_views_{0x1f};  // ViewSet as bits

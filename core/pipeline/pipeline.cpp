@@ -547,6 +547,11 @@ void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
                 std::to_string(v.truncation_voxels) + ", " + volume::VoxelEncodingName(v.encoding) +
                 ": resume with the project's own settings");
   if (p.frames < 0) throw Error("a resume point cannot have a negative frame count");
+  if (!p.raycast_guide.empty() && (p.raycast_guide.width() != volume::GuideTiles(cam_.width) ||
+                                   p.raycast_guide.height() != volume::GuideTiles(cam_.height)))
+    throw Error("the resume point's ray cast guide is " + std::to_string(p.raycast_guide.width()) + "x" +
+                std::to_string(p.raycast_guide.height()) + " tiles; the camera needs " +
+                std::to_string(volume::GuideTiles(cam_.width)) + "x" + std::to_string(volume::GuideTiles(cam_.height)));
   const bool need_frame = !reference_from_model_ && p.frames > 0;
   if (need_frame && (p.reference_color.width() != cam_.width || p.reference_color.height() != cam_.height ||
                      p.reference_depth.width() != cam_.width || p.reference_depth.height() != cam_.height))

@@ -334,9 +334,10 @@ void DeviceVolume::SwapOut(int count) {
     FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(kept) * 512, long(capacity_ - kept) * 512);
   });
   last_seen_ = std::move(seen);
-  // The kept bricks changed slots: all counted as changed (a mesher re-reads them).
-  HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty_.size()));
-  if (kept > 0) HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 1, std::size_t(kept)));
+  // The kept bricks' change flags follow them to their new slots.
+  std::vector<std::uint8_t> kept_dirty(dirty_.size(), 0);
+  for (int j = 0; j < kept; ++j) kept_dirty[std::size_t(j)] = dirty[std::size_t(keep[std::size_t(j)])];
+  cuda::CopyHostToDevice(dirty_.data(), kept_dirty.data(), kept_dirty.size());
   swapped_out_ += count;
   allocated_ = kept;
   RebuildTables(keys_.size());

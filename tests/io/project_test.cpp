@@ -2,6 +2,8 @@
 // truncated and newer files are refused naming the problem; a failed save keeps the earlier one.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <algorithm>
 
 #include <cstdio>
@@ -177,6 +179,27 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   damaged[bytes.size() / 2] = char(damaged[bytes.size() / 2] ^ 0x5a);
   test::WriteText(dir / "bad.hdrproj", damaged);
   test::ExpectErrorContaining([&] { io::LoadProject(dir / "bad.hdrproj"); }, {"bad.hdrproj", "damaged", "CRC"});
+  // The ray cast's start guide with a depth out of range (its CRC made right): refused, naming
+  // the file and the guide.
+  {
+    const std::size_t at = bytes.find("RCGD");
+    ASSERT_NE(at, std::string::npos);
+    std::uint64_t size = 0;
+    std::memcpy(&size, bytes.data() + at + 4, 8);
+    ASSERT_GE(size, 4u);
+    std::string bad_guide = bytes;
+    const float negative = -1.f;
+    std::memcpy(bad_guide.data() + at + 16, &negative, 4);
+    std::uint32_t crc = 0xffffffffu;  // CRC-32 (the zlib polynomial) of the payload
+    for (std::size_t i = 0; i < size; ++i) {
+      crc ^= std::uint8_t(bad_guide[at + 16 + i]);
+      for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    crc ^= 0xffffffffu;
+    std::memcpy(bad_guide.data() + at + 12, &crc, 4);
+    test::WriteText(dir / "guide.hdrproj", bad_guide);
+    test::ExpectErrorContaining([&] { io::LoadProject(dir / "guide.hdrproj"); }, {"guide.hdrproj", "start guide"});
+  }
   // A newer format version, another file, no file.
   std::string newer = bytes;
   newer[8] = 99;

@@ -122,6 +122,18 @@ TEST(ScanSession, RunsAreReproducible) {
   }
 }
 
+// A resume point whose ray cast guide does not fit the camera is refused, saying so.
+TEST(Pipeline, AResumeGuideOfAnotherSizeIsRefused) {
+  PipelineOptions o;
+  Pipeline p(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  ResumePoint r;
+  r.frames = 1;
+  r.anchored = true;
+  r.raycast_guide = Image<float>(20, 15, 1.f);
+  const volume::Volume model(o.volume);
+  test::ExpectErrorContaining([&] { p.Resume(model, r); }, {"ray cast guide", "20x15", "40x30"});
+}
+
 // The studio's surface, kept up to date from the bricks each stretch of frames changed, holds
 // exactly the triangles of a whole extraction of the same model; each update meshes only the
 // bricks a change reaches; a stretch without frames sends nothing.
