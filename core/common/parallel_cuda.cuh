@@ -44,7 +44,10 @@ void ForEachPixel(Gpu, int w, int h, F f) {
 // Sums over the pixels of a w x h grid of what `f(x, y, acc)` adds to an accumulator of K
 // doubles (Acc has `double v[K]`): each thread sums its pixels, warps reduce by shuffles,
 // each block writes one partial, and the last block adds the partials in block order (the
-// same sum on every run, no atomics on the values). The result is read back to the host.
+// same sum on every run, no atomics on the values). Sum reads the result back to the host;
+// SumOnDevice leaves it there: `gate()` (read by every block first) can skip the whole sum,
+// and one thread of the last block calls `finish(sums)` once they are complete, so that a
+// loop of sums and the steps between them runs without waiting for the host.
 class Reducer {
  public:
   static constexpr int kThreads = 256;
@@ -56,6 +59,8 @@ class Reducer {
 
   template <typename Acc, typename F>
   Acc Sum(int w, int h, F f);
+  template <typename Acc, typename F, typename Gate, typename Finish>
+  void SumOnDevice(int w, int h, F f, Gate gate, Finish finish);
 
  private:
   DeviceBuffer<double> partial_, sums_;
@@ -64,11 +69,18 @@ class Reducer {
 };
 
 namespace detail {
-template <typename Acc, typename F>
+struct Always {
+  __device__ bool operator()() const { return true; }
+};
+struct NoFinish {
+  __device__ void operator()(const double*) const {}
+};
+template <typename Acc, typename F, typename Gate, typename Finish>
 __global__ void __launch_bounds__(Reducer::kThreads)
-    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
+    SumKernel(int w, int h, F f, Gate gate, Finish finish, double* partial, unsigned* done, double* out) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   constexpr int kThreads = Reducer::kThreads;
+  if (!gate()) return;  // the same answer in every block: none counts itself done
   Acc acc;
   const int n = w * h;
   for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) f(i % w, i / w, acc);
@@ -99,7 +111,11 @@ __global__ void __launch_bounds__(Reducer::kThreads)
     for (int b = 0; b < int(gridDim.x); ++b) s += static_cast<volatile double*>(partial)[b * K + threadIdx.x];
     out[threadIdx.x] = s;
   }
-  if (threadIdx.x == 0) *done = 0;  // ready for the next reduction
+  __syncthreads();
+  if (threadIdx.x == 0) {
+    *done = 0;  // ready for the next reduction
+    finish(static_cast<const double*>(out));
+  }
 }
 }  // namespace detail
 
@@ -114,13 +130,21 @@ template <typename Acc, typename F>
 Acc Reducer::Sum(int w, int h, F f) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
-  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, partial_.data(), done_.data(), sums_.data());
+  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, detail::Always{}, detail::NoFinish{}, partial_.data(),
+                                                done_.data(), sums_.data());
   HDRF_CUDA_CHECK_LAUNCH();
   HDRF_CUDA_CHECK(cudaMemcpyAsync(host_, sums_.data(), sizeof(double) * K, cudaMemcpyDeviceToHost, 0));
   HDRF_CUDA_CHECK(cudaStreamSynchronize(0));
   Acc out;
   for (int k = 0; k < K; ++k) out.v[k] = host_[k];
   return out;
+}
+
+template <typename Acc, typename F, typename Gate, typename Finish>
+void Reducer::SumOnDevice(int w, int h, F f, Gate gate, Finish finish) {
+  const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
+  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, gate, finish, partial_.data(), done_.data(), sums_.data());
+  HDRF_CUDA_CHECK_LAUNCH();
 }
 
 }  // namespace hdrf::par

@@ -91,6 +91,13 @@ class Backend {
   // its own pose), with the tracker settings of this frame (its measured scales); pixels with
   // depth in the live frame; pixels the reference offers.
   virtual tracking::GnSystem Accumulate(int level, const Pose& T_world_live, const tracking::TrackerOptions& t) = 0;
+  // The tracker's Gauss-Newton iterations from a pose, with this frame's tracker settings:
+  // tracking::RunGaussNewton over Accumulate; the CUDA backend keeps them on the device.
+  virtual tracking::GaussNewtonRun RunTracker(const Pose& initial, const tracking::TrackerOptions& t,
+                                              const tracking::MotionPrior* prior) {
+    return tracking::RunGaussNewton([&](int l, const Pose& T) { return Accumulate(l, T, t); }, t.levels, initial, t,
+                                    prior);
+  }
   virtual long LiveValid() = 0;
   virtual long ReferenceValid() = 0;
   // 4. Reads the radiance and the last ray cast. The exposure ratio of the live frame.

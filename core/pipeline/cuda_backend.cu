@@ -131,6 +131,12 @@ class CudaBackend final : public Backend {
     return sums_.Accumulate(ref_[std::size_t(level)]->view(), reference_pose_, live_[std::size_t(level)]->view(),
                             T_world_live, t);
   }
+  tracking::GaussNewtonRun RunTracker(const Pose& initial, const tracking::TrackerOptions& t,
+                                      const tracking::MotionPrior* prior) override {
+    std::vector<tracking::GpuNormalEquations::Level> levels;
+    for (std::size_t l = 0; l < live_.size(); ++l) levels.push_back({ref_[l]->view(), live_[l]->view()});
+    return sums_.RunOnDevice(levels, reference_pose_, initial, t, prior);
+  }
   long LiveValid() override { return sums_.CountLiveVertices(live_[0]->vertex.view()); }
   long ReferenceValid() override { return sums_.CountReferenceVertices(ref_[0]->vertex.view()); }
 

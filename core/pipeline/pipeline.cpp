@@ -347,8 +347,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     // yet), matching all of that part is a success, not a loss.
     const tracking::TrackerOptions topt = TrackerNow();
     auto track = [&](const Pose& from, const tracking::MotionPrior* prior = nullptr) {
-      return tracking::Track([&](int l, const Pose& T) { return b.Accumulate(l, T, topt); }, topt.levels,
-                             std::min(b.LiveValid(), b.ReferenceValid()), from, topt, prior);
+      return tracking::JudgeTrack(b.RunTracker(from, topt, prior), from, std::min(b.LiveValid(), b.ReferenceValid()),
+                                  topt, prior);
     };
     const Pose velocity = previous_pose_.inverse() * pose_;
     tracking::TrackResult r;

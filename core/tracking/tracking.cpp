@@ -201,72 +201,79 @@ TrackResult Track(const Reference& ref, const Live& live, const Pose& initial,
       levels, live_valid, initial, o);
 }
 
-TrackResult Track(const Accumulator& accumulate, int available_levels, long live_valid,
-                  const Pose& initial, const TrackerOptions& o, const MotionPrior* prior) {
-  constexpr double kMotionSigmaM = 0.01, kMotionSigmaRad = 1.0 * 3.14159265358979 / 180.0;
-  const double spans = prior && prior->frames > 0 ? prior->frames : 1.0;
-  const double sigma_m = kMotionSigmaM * spans, sigma_rad = kMotionSigmaRad * spans;
-  TrackResult res;
-  Pose T = initial;
+PoseD ToPoseD(const Pose& T) {
+  PoseD d;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) d.R[3 * i + j] = T.linear()(i, j);
+    d.t[i] = T.translation()(i);
+  }
+  return d;
+}
+
+Pose FromPoseD(const PoseD& d) {
+  Pose T = Pose::Identity();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) T.linear()(i, j) = d.R[3 * i + j];
+    T.translation()(i) = d.t[i];
+  }
+  return T;
+}
+
+namespace {
+constexpr double kMotionSigmaM = 0.01, kMotionSigmaRad = 1.0 * 3.14159265358979 / 180.0;
+double PriorSpans(const MotionPrior* prior) { return prior && prior->frames > 0 ? prior->frames : 1.0; }
+}  // namespace
+
+StepPrior MakeStepPrior(const TrackerOptions& o, const MotionPrior* prior) {
+  StepPrior p;
+  if (!prior) return p;
+  const double spans = PriorSpans(prior);
+  p.on = true;
+  p.T_predicted_inv = ToPoseD(prior->T_world_camera.inverse());
+  p.sigma_m = kMotionSigmaM * spans;
+  p.sigma_rad = kMotionSigmaRad * spans;
+  // A prediction over several frame intervals (frames dropped) holds less: the floor falls
+  // with the square of the intervals, as the prior's variance grows.
+  p.floor = o.weak_info_floor / (spans * spans);
+  return p;
+}
+
+GaussNewtonRun RunGaussNewton(const Accumulator& accumulate, int available_levels, const Pose& initial,
+                              const TrackerOptions& o, const MotionPrior* prior) {
+  const StepPrior sp = MakeStepPrior(o, prior);
+  GaussNewtonRun run;
+  PoseD T = ToPoseD(initial);
   const int levels = std::min(o.levels, available_levels);
-  GnSystem last;
-  // A level's iterations stop once a step moves the pose less than 0.1 mm and 0.006 degrees,
-  // far below the depth's noise (1e-5, as until session 20, ran most levels to their cap:
-  // twice the tracking time at 640x480 for no measured gain in accuracy, docs/benchmarks.md).
-  constexpr double kStop = 1e-4;
   for (int l = levels - 1; l >= 0; --l) {
     const int iters = o.iterations[std::size_t(levels - 1 - l)];
     for (int it = 0; it < iters; ++it) {
-      GnSystem acc = accumulate(l, T);
-      if (acc.icp_n() + acc.photo_n() < 12) break;
-      Mat6 H;
-      Vec6d g;
-      for (int i = 0, k = 0; i < 6; ++i) {
-        for (int j = i; j < 6; ++j, ++k) H(i, j) = H(j, i) = acc.v[k];
-        g(i) = acc.v[GnSystem::kH + i];
-      }
-      if (prior) {
-        const Vec6 e = se3::Log(prior->T_world_camera.inverse() * T);
-        // Directions the pixel terms fix far more weakly than their strongest one: the prior
-        // raised along them to the floor (whitened by the prior's deviations, so that metres
-        // and radians compare), pulling the pose to the prediction there.
-        // A prediction over several frame intervals (frames dropped) holds less: the floor
-        // falls with the square of the intervals, as the prior's variance grows.
-        const double floor = o.weak_info_floor / (spans * spans);
-        if (floor > 0) {
-          Vec6d sw, ew;
-          for (int i = 0; i < 6; ++i) {
-            sw(i) = i < 3 ? sigma_m : sigma_rad;
-            ew(i) = e(i) / sw(i);
-          }
-          const Mat6 Hw = sw.asDiagonal() * H * sw.asDiagonal();
-          const Eigen::SelfAdjointEigenSolver<Mat6> es(Hw);
-          const double top = es.eigenvalues()(5);
-          for (int k = 0; k < 6; ++k) {
-            const double add = floor * top - es.eigenvalues()(k);
-            if (!(add > 0)) continue;
-            const Vec6d v = es.eigenvectors().col(k);
-            const Vec6d u = v.cwiseQuotient(sw);  // S^-1 v
-            H += add * u * u.transpose();
-            g += add * u * v.dot(ew);
-          }
-        }
-        for (int i = 0; i < 6; ++i) {
-          const double lambda = 1.0 / (i < 3 ? sigma_m * sigma_m : sigma_rad * sigma_rad);
-          H(i, i) += lambda;
-          g(i) += lambda * e(i);
-        }
-      }
-      const Mat6 Hd = H + 1e-6 * Mat6::Identity() * H.trace() / 6.0;
-      const Vec6d xi = Hd.ldlt().solve(-g);
-      if (!xi.allFinite()) break;
-      T = se3::Orthonormalized(T * se3::Exp(Vec6(xi)));
-      ++res.iterations;
-      ++res.level_iterations[std::size_t(l)];
-      if (l == 0) last = acc;
-      if (xi.head<3>().norm() < kStop && xi.tail<3>().norm() < kStop) break;
+      const GnSystem acc = accumulate(l, FromPoseD(T));
+      const int out = GnStep(acc, sp, &T);
+      if (out == kStepTooFew || out == kStepNotFinite) break;
+      ++run.iterations;
+      ++run.level_iterations[std::size_t(l)];
+      if (l == 0) run.last = acc;
+      if (out == kStepConverged) break;
     }
   }
+  run.T_world_camera = FromPoseD(T);
+  return run;
+}
+
+TrackResult Track(const Accumulator& accumulate, int available_levels, long live_valid, const Pose& initial,
+                  const TrackerOptions& o, const MotionPrior* prior) {
+  return JudgeTrack(RunGaussNewton(accumulate, available_levels, initial, o, prior), initial, live_valid, o, prior);
+}
+
+TrackResult JudgeTrack(const GaussNewtonRun& run, const Pose& initial, long live_valid, const TrackerOptions& o,
+                       const MotionPrior* prior) {
+  const double spans = PriorSpans(prior);
+  const double sigma_m = kMotionSigmaM * spans, sigma_rad = kMotionSigmaRad * spans;
+  TrackResult res;
+  const Pose T = run.T_world_camera;
+  GnSystem last = run.last;
+  res.iterations = run.iterations;
+  res.level_iterations = run.level_iterations;
   res.T_world_camera = T;
   res.rms_icp_m = last.icp_w() > 0 ? std::sqrt(last.icp_r2() / last.icp_w()) : 0;
   res.rms_photo = last.photo_w() > 0 ? std::sqrt(last.photo_r2() / last.photo_w()) : 0;

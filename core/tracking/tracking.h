@@ -12,6 +12,7 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
+#include "tracking/gn_step.h"
 #include "tracking/tracking_impl.h"
 
 namespace hdrf::tracking {
@@ -161,6 +162,24 @@ struct MotionPrior {
 };
 TrackResult Track(const Accumulator& accumulate, int levels, long live_valid, const Pose& initial,
                   const TrackerOptions& o, const MotionPrior* prior = nullptr);
+
+// Track in two parts, for a backend that runs the iterations where its sums are (the CUDA
+// backend: on the device, gn_step.h): the iterations, coarse to fine, each level's stopping
+// when a step moves the pose less than 0.1 mm and 0.006 degrees, has fewer than 12 terms or
+// fails; then the result and its health from where they ended.
+struct GaussNewtonRun {
+  Pose T_world_camera = Pose::Identity();
+  GnSystem last;  // the finest level's last system a step was taken with (zeros: none)
+  int iterations = 0;
+  std::array<int, 4> level_iterations{};
+};
+StepPrior MakeStepPrior(const TrackerOptions& o, const MotionPrior* prior);
+GaussNewtonRun RunGaussNewton(const Accumulator& accumulate, int levels, const Pose& initial, const TrackerOptions& o,
+                              const MotionPrior* prior = nullptr);
+TrackResult JudgeTrack(const GaussNewtonRun& run, const Pose& initial, long live_valid, const TrackerOptions& o,
+                       const MotionPrior* prior = nullptr);
+PoseD ToPoseD(const Pose& T);
+Pose FromPoseD(const PoseD& T);
 
 // The per-pixel term arguments of one level and pose (shared by the CPU and CUDA sums), and
 // the CPU sum over a level.

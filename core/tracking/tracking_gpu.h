@@ -1,9 +1,11 @@
 // The tracker on the GPU (tracking_cuda.cu; CUDA builds only): the pyramids through the
 // shared drivers (pyramid_driver.h) and the Gauss-Newton sums of the same per-pixel terms
-// (tracking_impl.h) as AccumulateCpu, reduced in a fixed order. Views are device views.
+// (tracking_impl.h) as AccumulateCpu, reduced in a fixed order, and the iterations
+// themselves on the device. Views are device views.
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "tracking/pyramid_driver.h"
 #include "tracking/tracking.h"
@@ -21,6 +23,16 @@ class GpuNormalEquations {
   ~GpuNormalEquations();
   GnSystem Accumulate(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
                       const Pose& T_world_live, const TrackerOptions& o);
+  // The Gauss-Newton iterations of RunGaussNewton (tracking.h) with the step in the last
+  // block of each sum (gn_step.h): the pose stays on the device between iterations, the
+  // iterations are queued without waiting, and the result is read back once. `levels`:
+  // finest first, each the reference's and the live frame's views.
+  struct Level {
+    ReferenceView ref;
+    LiveView live;
+  };
+  GaussNewtonRun RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
+                             const TrackerOptions& o, const MotionPrior* prior);
   long CountLiveVertices(ImageView<const Float3> vertex_c);       // with depth (z > 0)
   long CountReferenceVertices(ImageView<const Float3> vertex_w);  // any non-zero vertex
 

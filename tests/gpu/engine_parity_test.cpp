@@ -209,6 +209,29 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
         EXPECT_EQ(ga.v[32], gb.v[32]);
         EXPECT_LE(worst / scale, 1e-9);
       }
+      // The iterations on the device (each step in the last block of its sum) against the
+      // same steps taken on the host over the GPU's sums, and against the CPU's run; from a
+      // start 1 cm and half a degree off, with the motion prior at the tracked pose.
+      Vec6 off;
+      off << 0.006, -0.005, 0.005, 0.005, -0.004, 0.003;
+      const Pose start = T * se3::Exp(off);
+      const tracking::MotionPrior prior{T, 1.0};
+      const tracking::GaussNewtonRun dev = gpu.backend().RunTracker(start, o.tracker, &prior);
+      const tracking::GaussNewtonRun host = tracking::RunGaussNewton(
+          [&](int l, const Pose& P) { return gpu.backend().Accumulate(l, P, o.tracker); }, o.tracker.levels, start,
+          o.tracker, &prior);
+      const tracking::GaussNewtonRun ref = cpu.backend().RunTracker(start, o.tracker, &prior);
+      std::printf("  iterations on the device %d (%d %d %d), stepped on the host %d, CPU %d\n", dev.iterations,
+                  dev.level_iterations[2], dev.level_iterations[1], dev.level_iterations[0], host.iterations,
+                  ref.iterations);
+      EXPECT_GT(dev.iterations, 2);
+      EXPECT_EQ(dev.iterations, host.iterations);
+      EXPECT_EQ(dev.level_iterations, host.level_iterations);
+      ExpectPosesClose(dev.T_world_camera, host.T_world_camera, 1e-9, 1e-9, "device-stepped pose");
+      ExpectPosesClose(dev.T_world_camera, ref.T_world_camera, 1e-5, 1e-5, "device-stepped pose against the CPU's");
+      ExpectPosesClose(dev.T_world_camera, T, 2e-3, 2e-3, "device-stepped pose against the tracked one");
+      EXPECT_EQ(dev.last.v[31], host.last.v[31]);
+      EXPECT_EQ(dev.last.v[32], host.last.v[32]);
     }
   }
 }

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <random>
+
+#include <Eigen/Dense>
 
 #include "common/error.h"
 #include "support/sim_frames.h"
@@ -143,6 +146,132 @@ TEST(TrackPrior, WeakDirectionOfAStrongViewIsHeldToThePrediction) {
 // One ICP term: a live point 1 cm in front of a reference plane facing the camera adds the
 // point-to-plane residual with the Jacobian of the plane's normal; a normal turned away
 // beyond the angle gate, or a point beyond the distance gate, adds nothing.
+// The step as the tracker took it with Eigen before it was written once for both devices
+// (gn_step.h): the reference the plain-double step must reproduce.
+Pose EigenStep(const tracking::GnSystem& acc, const Pose& T, const Pose& predicted, double sigma_m, double sigma_rad,
+               double floor, bool* raised) {
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  using Vec6d = Eigen::Matrix<double, 6, 1>;
+  Mat6 H;
+  Vec6d g;
+  for (int i = 0, k = 0; i < 6; ++i) {
+    for (int j = i; j < 6; ++j, ++k) H(i, j) = H(j, i) = acc.v[k];
+    g(i) = acc.v[tracking::GnSystem::kH + i];
+  }
+  const Vec6 e = se3::Log(predicted.inverse() * T);
+  Vec6d sw, ew;
+  for (int i = 0; i < 6; ++i) {
+    sw(i) = i < 3 ? sigma_m : sigma_rad;
+    ew(i) = e(i) / sw(i);
+  }
+  const Mat6 Hw = sw.asDiagonal() * H * sw.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Mat6> es(Hw);
+  *raised = false;
+  for (int k = 0; k < 6; ++k) {
+    const double add = floor * es.eigenvalues()(5) - es.eigenvalues()(k);
+    if (!(add > 0)) continue;
+    *raised = true;
+    const Vec6d v = es.eigenvectors().col(k);
+    const Vec6d u = v.cwiseQuotient(sw);
+    H += add * u * u.transpose();
+    g += add * u * v.dot(ew);
+  }
+  for (int i = 0; i < 6; ++i) {
+    const double lambda = 1.0 / (sw(i) * sw(i));
+    H(i, i) += lambda;
+    g(i) += lambda * e(i);
+  }
+  const Mat6 Hd = H + 1e-6 * Mat6::Identity() * H.trace() / 6.0;
+  const Vec6d xi = Hd.ldlt().solve(-g);
+  return se3::Orthonormalized(T * se3::Exp(Vec6(xi)));
+}
+
+TEST(GaussNewtonStep, PlainDoubleStepMatchesTheEigenSolveWithAndWithoutTheWeakFloor) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n01(0, 1);
+  auto twist = [&](double st, double sr) {
+    Vec6 x;
+    for (int i = 0; i < 6; ++i) x(i) = n01(rng) * (i < 3 ? st : sr);
+    return x;
+  };
+  int raised = 0, trials = 400;
+  double worst_t = 0, worst_r = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    // A system of 60 terms; in half the trials one direction is nearly unconstrained (a wall
+    // slid along), so that the prior's floor is raised there.
+    tracking::GnSystem acc;
+    const bool weak = trial % 2 == 0;
+    Vec6 weak_dir = twist(1, 1).normalized();
+    for (int k = 0; k < 60; ++k) {
+      Vec6 j = twist(30, 3);
+      if (weak) j -= j.dot(weak_dir) * (1 - 1e-4) * weak_dir;
+      double J[6];
+      for (int i = 0; i < 6; ++i) J[i] = j(i);
+      tracking::AddRobustTerm(acc, J, n01(rng) * 0.01, 1.0, 1.345, 27);
+    }
+    const Pose T = se3::Exp(twist(0.5, 0.8)), predicted = T * se3::Exp(twist(0.01, 0.01));
+    const double spans = 1 + trial % 3;
+    tracking::TrackerOptions o;
+    const tracking::MotionPrior prior{predicted, spans};
+    const tracking::StepPrior sp = tracking::MakeStepPrior(o, &prior);
+    bool r = false;
+    const Pose want = EigenStep(acc, T, predicted, sp.sigma_m, sp.sigma_rad, sp.floor, &r);
+    raised += r;
+    tracking::PoseD got = tracking::ToPoseD(T);
+    const int out = tracking::GnStep(acc, sp, &got);
+    ASSERT_TRUE(out == tracking::kStepTaken || out == tracking::kStepConverged) << "trial " << trial;
+    const Pose d = want.inverse() * tracking::FromPoseD(got);
+    worst_t = std::max(worst_t, se3::TranslationNorm(d));
+    worst_r = std::max(worst_r, se3::RotationAngle(d));
+  }
+  std::printf("%d of %d steps raised the prior along a weak direction; worst difference from Eigen %.2g m, %.2g rad\n",
+              raised, trials, worst_t, worst_r);
+  EXPECT_GE(raised, trials / 4);
+  EXPECT_LE(worst_t, 1e-12);
+  EXPECT_LE(worst_r, 1e-12);
+  // Too few terms: no step, the pose kept.
+  tracking::GnSystem few;
+  double J[6] = {1, 0, 0, 0, 0, 0};
+  for (int k = 0; k < 11; ++k) tracking::AddRobustTerm(few, J, 0.1, 1.0, 1.345, 27);
+  tracking::PoseD keep = tracking::ToPoseD(se3::Exp(twist(0.3, 0.3)));
+  const tracking::PoseD before = keep;
+  EXPECT_EQ(tracking::GnStep(few, tracking::StepPrior{}, &keep), tracking::kStepTooFew);
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(keep.R[k], before.R[k]);
+}
+
+TEST(GaussNewtonStep, PlainDoubleExpLogAndOrthonormalisationMatchSe3) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst_log = 0, worst_exp = 0;
+  // Angles from 1e-12 to just under pi, with every axis (Shepperd's method switches branch
+  // on the trace and the largest diagonal entry).
+  for (int k = 0; k < 3000; ++k) {
+    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+    axis.normalize();
+    const double angle = k % 3 == 0 ? std::pow(10.0, -12 + 12 * std::abs(u(rng))) : 3.14159 * std::abs(u(rng));
+    Vec6 xi;
+    xi << u(rng), u(rng), u(rng), axis.x() * angle, axis.y() * angle, axis.z() * angle;
+    const Pose T = se3::Exp(xi);
+    double x[6];
+    for (int i = 0; i < 6; ++i) x[i] = xi(i);
+    const Pose Te = tracking::FromPoseD(tracking::ExpTwist(x));
+    worst_exp = std::max(worst_exp, (T.matrix() - Te.matrix()).cwiseAbs().maxCoeff());
+    double back[6];
+    tracking::LogTwist(tracking::ToPoseD(T), back);
+    const Vec6 want = se3::Log(T);
+    for (int i = 0; i < 6; ++i) worst_log = std::max(worst_log, std::abs(back[i] - want(i)));
+    // A rotation a little off orthonormal comes back as se3::Orthonormalized makes it.
+    Pose skew = T;
+    skew.linear()(0, 1) += 1e-7 * u(rng);
+    skew.linear()(2, 0) += 1e-7 * u(rng);
+    const Pose o1 = se3::Orthonormalized(skew), o2 = tracking::FromPoseD(tracking::OrthonormalizedD(tracking::ToPoseD(skew)));
+    worst_exp = std::max(worst_exp, (o1.matrix() - o2.matrix()).cwiseAbs().maxCoeff());
+  }
+  std::printf("worst difference from se3: exp/orthonormalise %.2g, log %.2g\n", worst_exp, worst_log);
+  EXPECT_LE(worst_exp, 1e-14);
+  EXPECT_LE(worst_log, 1e-9);
+}
+
 TEST(IcpTerm, PointToPlaneResidualAndGates) {
   const PinholeCamera cam{4, 4, 4.f, 4.f, 1.5f, 1.5f};
   Image<Float3> live_v(4, 4), live_n(4, 4, Float3{0, 0, -1}), ref_v(4, 4), ref_n(4, 4, Float3{0, 0, -1});
