@@ -60,7 +60,7 @@ class Reducer {
   template <typename Acc, typename F>
   Acc Sum(int w, int h, F f);
   template <typename Acc, typename F, typename Gate, typename Finish>
-  void SumOnDevice(int w, int h, F f, Gate gate, Finish finish);
+  void SumOnDevice(int w, int h, F f, Gate gate, Finish finish, cudaStream_t stream = 0);
 
  private:
   DeviceBuffer<double> partial_, sums_;
@@ -141,9 +141,10 @@ Acc Reducer::Sum(int w, int h, F f) {
 }
 
 template <typename Acc, typename F, typename Gate, typename Finish>
-void Reducer::SumOnDevice(int w, int h, F f, Gate gate, Finish finish) {
+void Reducer::SumOnDevice(int w, int h, F f, Gate gate, Finish finish, cudaStream_t stream) {
   const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
-  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, gate, finish, partial_.data(), done_.data(), sums_.data());
+  detail::SumKernel<Acc><<<blocks, kThreads, 0, stream>>>(w, h, f, gate, finish, partial_.data(), done_.data(),
+                                                          sums_.data());
   HDRF_CUDA_CHECK_LAUNCH();
 }
 

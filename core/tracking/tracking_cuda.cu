@@ -1,3 +1,5 @@
+#include <array>
+
 #include "common/parallel_cuda.cuh"
 #include "tracking/tracking_gpu.h"
 
@@ -19,6 +21,14 @@ struct Count1 {
   double v[1] = {0};
 };
 
+// What changes from frame to frame (uploaded by the run's first step): the start, the
+// prior, and each level's term arguments (the pose's parts replaced iteration by iteration).
+struct FrameParams {
+  PoseD initial;
+  StepPrior prior;
+  IcpArgs icp[4];
+  PhotoArgs photo[4];
+};
 // A tracking run's state on the device: the pose, when the level stops, the counts, the
 // finest level's last system, and the term arguments at the current pose.
 struct DeviceRun {
@@ -28,31 +38,118 @@ struct DeviceRun {
   IcpArgs icp;
   PhotoArgs photo;
 };
+struct DeviceTrack {
+  FrameParams frame;
+  DeviceRun run;
+};
+
+__global__ void StartRun(DeviceTrack* d) {
+  DeviceRun& s = d->run;
+  s.T = d->frame.initial;
+  s.stop = s.skip = s.iterations = 0;
+  for (int k = 0; k < 4; ++k) s.level_iterations[k] = 0;
+  for (int k = 0; k < GnSystem::kSize; ++k) s.last.v[k] = 0;
+}
 
 // Before each sum: skipped once the level has stopped (its first iteration always runs),
 // else the term arguments of the level at the pose the last step left.
-__global__ void PrepareIteration(DeviceRun* s, IcpArgs icp, PhotoArgs photo, bool first) {
-  if (!first && s->stop) {
-    s->skip = 1;
+__global__ void PrepareIteration(DeviceTrack* d, int level, bool first) {
+  DeviceRun& s = d->run;
+  if (!first && s.stop) {
+    s.skip = 1;
     return;
   }
-  s->skip = 0;
-  const PoseD T = s->T;
+  s.skip = 0;
+  const PoseD T = s.T;
+  IcpArgs icp = d->frame.icp[level];
+  PhotoArgs photo = d->frame.photo[level];
   icp.T_world_live = ToRigid(T);
   for (int k = 0; k < 9; ++k) icp.R_world_live[k] = T.R[k];
   photo.T_live_world = ToRigid(Inverse(T));
-  s->icp = icp;
-  s->photo = photo;
+  s.icp = icp;
+  s.photo = photo;
 }
+
+// What a captured run depends on besides its frame's parameters.
+struct GraphShape {
+  int levels = 0;
+  std::array<int, 4> iterations{}, width{}, height{};
+  bool icp = false, photo = false;
+  bool operator==(const GraphShape&) const = default;
+};
 }  // namespace
 
 struct GpuNormalEquations::Impl {
   par::Reducer reducer{GnSystem::kSize};
-  DeviceBuffer<DeviceRun> run{1};
-  DeviceRun* host = nullptr;  // pinned
-  Impl() { HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceRun))); }
-  ~Impl() { cudaFreeHost(host); }
+  DeviceBuffer<DeviceTrack> track{1};
+  DeviceTrack* host = nullptr;  // pinned: the frame's parameters out, the run's state back
+  cudaStream_t stream = nullptr;
+  cudaEvent_t ready = nullptr;
+  cudaGraphExec_t graph = nullptr;
+  GraphShape shape;
+  Impl() {
+    HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceTrack)));
+    HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
+    HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
+  }
+  ~Impl() {
+    if (graph) cudaGraphExecDestroy(graph);
+    cudaEventDestroy(ready);
+    cudaStreamDestroy(stream);
+    cudaFreeHost(host);
+  }
 };
+
+// The whole run as one CUDA graph: the parameters' upload, the start, every level's
+// iterations (a preparation and a sum whose last block takes the step), the state's
+// read-back. Launched as one, it leaves the GPU nothing to wait for from the host between
+// iterations; it is captured again only when the shape changes (levels, iterations, sizes).
+namespace {
+cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* host, cudaStream_t stream,
+                           const GraphShape& g) {
+  HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, cudaStreamCaptureModeThreadLocal));
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(&d->frame, &host->frame, sizeof(FrameParams), cudaMemcpyHostToDevice, stream));
+  StartRun<<<1, 1, 0, stream>>>(d);
+  const bool use_icp = g.icp, use_photo = g.photo;
+  for (int l = g.levels - 1; l >= 0; --l) {
+    const int iters = g.iterations[std::size_t(g.levels - 1 - l)];
+    for (int it = 0; it < iters; ++it) {
+      PrepareIteration<<<1, 1, 0, stream>>>(d, l, it == 0);
+      const DeviceTrack* rd = d;
+      reducer.SumOnDevice<GnSystem>(
+          g.width[std::size_t(l)], g.height[std::size_t(l)],
+          [=] __device__(int x, int y, GnSystem& acc) {
+            if (use_icp) IcpTerm(rd->run.icp, x, y, acc);
+            if (use_photo) PhotoTerm(rd->run.photo, x, y, acc);
+          },
+          [=] __device__() { return rd->run.skip == 0; },
+          [=] __device__(const double* sums) {
+            DeviceRun& s = d->run;
+            GnSystem acc;
+            for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
+            const int out = GnStep(acc, d->frame.prior, &s.T);
+            if (out == kStepTooFew || out == kStepNotFinite) {
+              s.stop = 1;
+              return;
+            }
+            ++s.iterations;
+            ++s.level_iterations[l];
+            if (l == 0) s.last = acc;
+            s.stop = out == kStepConverged ? 1 : 0;
+          },
+          stream);
+    }
+  }
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(&host->run, &d->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, stream));
+  cudaGraph_t captured = nullptr;
+  HDRF_CUDA_CHECK(cudaStreamEndCapture(stream, &captured));
+  cudaGraphExec_t graph = nullptr;
+  const cudaError_t made = cudaGraphInstantiate(&graph, captured, 0);
+  cudaGraphDestroy(captured);
+  HDRF_CUDA_CHECK(made);
+  return graph;
+}
+}  // namespace
 
 GpuNormalEquations::GpuNormalEquations() : impl_(std::make_unique<Impl>()) {}
 GpuNormalEquations::~GpuNormalEquations() = default;
@@ -73,53 +170,38 @@ GnSystem GpuNormalEquations::Accumulate(const ReferenceView& ref, const Pose& T_
 GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref,
                                                const Pose& initial, const TrackerOptions& o, const MotionPrior* prior) {
   Impl& m = *impl_;
-  *m.host = DeviceRun{};
-  m.host->T = ToPoseD(initial);
-  HDRF_CUDA_CHECK(cudaMemcpyAsync(m.run.data(), m.host, sizeof(DeviceRun), cudaMemcpyHostToDevice, 0));
-  const StepPrior sp = MakeStepPrior(o, prior);
-  const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
-  const bool use_photo = o.kind != TrackerKind::kIcp;
-  DeviceRun* s = m.run.data();
-  const int n = std::min(o.levels, int(levels.size()));
-  for (int l = n - 1; l >= 0; --l) {
+  GraphShape g;
+  g.levels = std::min(o.levels, std::min(int(levels.size()), 4));
+  g.icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
+  g.photo = o.kind != TrackerKind::kIcp;
+  FrameParams& f = m.host->frame;
+  f.initial = ToPoseD(initial);
+  f.prior = MakeStepPrior(o, prior);
+  for (int l = 0; l < g.levels; ++l) {
     const Level& L = levels[std::size_t(l)];
-    // The pose's parts of these are replaced on the device, iteration by iteration.
-    const IcpArgs icp = MakeIcpArgs(L.ref, T_world_ref, L.live, initial, o);
-    const PhotoArgs photo = MakePhotoArgs(L.ref, L.live, initial, o);
-    const int iters = o.iterations[std::size_t(n - 1 - l)];
-    for (int it = 0; it < iters; ++it) {
-      PrepareIteration<<<1, 1>>>(s, icp, photo, it == 0);
-      HDRF_CUDA_CHECK_LAUNCH();
-      const DeviceRun* rs = s;
-      m.reducer.SumOnDevice<GnSystem>(
-          L.live.cam.width, L.live.cam.height,
-          [=] __device__(int x, int y, GnSystem& acc) {
-            if (use_icp) IcpTerm(rs->icp, x, y, acc);
-            if (use_photo) PhotoTerm(rs->photo, x, y, acc);
-          },
-          [=] __device__() { return rs->skip == 0; },
-          [=] __device__(const double* sums) {
-            GnSystem acc;
-            for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
-            const int out = GnStep(acc, sp, &s->T);
-            if (out == kStepTooFew || out == kStepNotFinite) {
-              s->stop = 1;
-              return;
-            }
-            ++s->iterations;
-            ++s->level_iterations[l];
-            if (l == 0) s->last = acc;
-            s->stop = out == kStepConverged ? 1 : 0;
-          });
-    }
+    g.iterations[std::size_t(l)] = o.iterations[std::size_t(l)];
+    g.width[std::size_t(l)] = L.live.cam.width;
+    g.height[std::size_t(l)] = L.live.cam.height;
+    f.icp[l] = MakeIcpArgs(L.ref, T_world_ref, L.live, initial, o);
+    f.photo[l] = MakePhotoArgs(L.ref, L.live, initial, o);
   }
-  HDRF_CUDA_CHECK(cudaMemcpyAsync(m.host, m.run.data(), sizeof(DeviceRun), cudaMemcpyDeviceToHost, 0));
-  HDRF_CUDA_CHECK(cudaStreamSynchronize(0));
+  if (!m.graph || !(g == m.shape)) {
+    if (m.graph) HDRF_CUDA_CHECK(cudaGraphExecDestroy(m.graph));
+    m.graph = nullptr;
+    m.graph = CaptureRun(m.reducer, m.track.data(), m.host, m.stream, g);
+    m.shape = g;
+  }
+  // After whatever the default stream has queued (the live pyramid, the reference).
+  HDRF_CUDA_CHECK(cudaEventRecord(m.ready, 0));
+  HDRF_CUDA_CHECK(cudaStreamWaitEvent(m.stream, m.ready, 0));
+  HDRF_CUDA_CHECK(cudaGraphLaunch(m.graph, m.stream));
+  HDRF_CUDA_CHECK(cudaStreamSynchronize(m.stream));
+  const DeviceRun& r = m.host->run;
   GaussNewtonRun run;
-  run.T_world_camera = FromPoseD(m.host->T);
-  run.last = m.host->last;
-  run.iterations = m.host->iterations;
-  for (int k = 0; k < 4; ++k) run.level_iterations[std::size_t(k)] = m.host->level_iterations[k];
+  run.T_world_camera = FromPoseD(r.T);
+  run.last = r.last;
+  run.iterations = r.iterations;
+  for (int k = 0; k < 4; ++k) run.level_iterations[std::size_t(k)] = r.level_iterations[k];
   return run;
 }
 
