@@ -2,6 +2,8 @@
 // 100-frame scan. Skips (with the reason) where no GPU is usable.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -233,6 +235,18 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
       ExpectPosesClose(dev.T_world_camera, T, 5e-3, 5e-3, "device-stepped pose against the tracked one");
       EXPECT_EQ(dev.last.v[31], host.last.v[31]);
       EXPECT_EQ(dev.last.v[32], host.last.v[32]);
+      // How long each takes (printed, for the benchmark notes; not asserted).
+      auto time_of = [&](auto&& f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int r = 0; r < 20; ++r) f();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 20;
+      };
+      const double ms_dev = time_of([&] { gpu.backend().RunTracker(start, o.tracker, &prior); });
+      const double ms_host = time_of([&] {
+        tracking::RunGaussNewton([&](int l, const Pose& P) { return gpu.backend().Accumulate(l, P, o.tracker); },
+                                 o.tracker.levels, start, o.tracker, &prior);
+      });
+      std::printf("  Gauss-Newton run: %.3f ms on the device, %.3f ms stepped on the host\n", ms_dev, ms_host);
     }
   }
 }
