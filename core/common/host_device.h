@@ -9,3 +9,11 @@
 #define HDRF_HD inline
 #define HDRF_DEVICE_CODE 0
 #endif
+
+// Unrolls the loop that follows in device code (so that small fixed-size arrays live in
+// registers rather than in slow local memory); nothing on the host.
+#if defined(__CUDA_ARCH__)
+#define HDRF_UNROLL _Pragma("unroll")
+#else
+#define HDRF_UNROLL
+#endif

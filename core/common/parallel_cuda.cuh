@@ -61,6 +61,8 @@ class Reducer {
   Acc Sum(int w, int h, F f);
   template <typename Acc, typename F, typename Gate, typename Finish>
   void SumOnDevice(int w, int h, F f, Gate gate, Finish finish, cudaStream_t stream = 0);
+  // Where SumOnDevice leaves the sums (device memory, until the next sum).
+  double* device_sums() { return sums_.data(); }
 
  private:
   DeviceBuffer<double> partial_, sums_;
@@ -106,9 +108,20 @@ __global__ void __launch_bounds__(Reducer::kThreads)
   __syncthreads();
   if (!last) return;
   __threadfence();
+  // G groups of K threads each add every G-th block's partials, then one thread per value
+  // adds the groups' sums in group order: the same order every run, G times shorter chains.
+  constexpr int G = kThreads / K > 0 ? kThreads / K : 1;
+  __shared__ double group_sum[G][K];
+  if (threadIdx.x < G * K) {
+    const int k = threadIdx.x % K, grp = threadIdx.x / K;
+    double s = 0;
+    for (int b = grp; b < int(gridDim.x); b += G) s += static_cast<volatile double*>(partial)[b * K + k];
+    group_sum[grp][k] = s;
+  }
+  __syncthreads();
   if (threadIdx.x < K) {
     double s = 0;
-    for (int b = 0; b < int(gridDim.x); ++b) s += static_cast<volatile double*>(partial)[b * K + threadIdx.x];
+    for (int grp = 0; grp < G; ++grp) s += group_sum[grp][threadIdx.x];
     out[threadIdx.x] = s;
   }
   __syncthreads();

@@ -21,7 +21,9 @@ struct PoseD {
 
 HDRF_HD PoseD Compose(const PoseD& a, const PoseD& b) {
   PoseD c;
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i) {
+    HDRF_UNROLL
     for (int j = 0; j < 3; ++j) c.R[3 * i + j] = a.R[3 * i] * b.R[j] + a.R[3 * i + 1] * b.R[3 + j] + a.R[3 * i + 2] * b.R[6 + j];
     c.t[i] = a.R[3 * i] * b.t[0] + a.R[3 * i + 1] * b.t[1] + a.R[3 * i + 2] * b.t[2] + a.t[i];
   }
@@ -29,13 +31,17 @@ HDRF_HD PoseD Compose(const PoseD& a, const PoseD& b) {
 }
 HDRF_HD PoseD Inverse(const PoseD& a) {
   PoseD c;
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i)
+    HDRF_UNROLL
     for (int j = 0; j < 3; ++j) c.R[3 * i + j] = a.R[3 * j + i];
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i) c.t[i] = -(c.R[3 * i] * a.t[0] + c.R[3 * i + 1] * a.t[1] + c.R[3 * i + 2] * a.t[2]);
   return c;
 }
 HDRF_HD RigidTransform ToRigid(const PoseD& a) {
   RigidTransform r;
+  HDRF_UNROLL
   for (int k = 0; k < 9; ++k) r.r[k] = float(a.R[k]);
   r.t = {float(a.t[0]), float(a.t[1]), float(a.t[2])};
   return r;
@@ -47,7 +53,9 @@ HDRF_HD PoseD ExpTwist(const double xi[6]) {
   const double theta = sqrt(wx * wx + wy * wy + wz * wz);
   const double W[9] = {0, -wz, wy, wz, 0, -wx, -wy, wx, 0};
   double W2[9];
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i)
+    HDRF_UNROLL
     for (int j = 0; j < 3; ++j) W2[3 * i + j] = W[3 * i] * W[j] + W[3 * i + 1] * W[3 + j] + W[3 * i + 2] * W[6 + j];
   double a, b, c;  // R = I + a W + b W^2, V = I + b' W + c W^2
   double vb;
@@ -61,11 +69,13 @@ HDRF_HD PoseD ExpTwist(const double xi[6]) {
   }
   PoseD T;
   double V[9];
+  HDRF_UNROLL
   for (int k = 0; k < 9; ++k) {
     const double id = (k % 4 == 0) ? 1.0 : 0.0;
     T.R[k] = id + a * W[k] + b * W2[k];
     V[k] = id + vb * W[k] + c * W2[k];
   }
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i) T.t[i] = V[3 * i] * xi[0] + V[3 * i + 1] * xi[1] + V[3 * i + 2] * xi[2];
   return T;
 }
@@ -132,8 +142,10 @@ HDRF_HD void LogTwist(const PoseD& T, double xi[6]) {
     const double half = 0.5 * theta;
     k = (1.0 - half * cos(half) / sin(half)) / (theta * theta);
   }
+  HDRF_UNROLL
   for (int i = 0; i < 3; ++i) {
     double row = 0;
+    HDRF_UNROLL
     for (int j = 0; j < 3; ++j) {
       const double w2 = W[3 * i] * W[j] + W[3 * i + 1] * W[3 + j] + W[3 * i + 2] * W[6 + j];
       const double vinv = (i == j ? 1.0 : 0.0) - 0.5 * W[3 * i + j] + k * w2;
@@ -147,15 +159,20 @@ HDRF_HD void LogTwist(const PoseD& T, double xi[6]) {
 // Cholesky factor of a symmetric 6x6 matrix (lower, row-major); false unless it is
 // positive definite.
 HDRF_HD bool Cholesky6(const double A[36], double L[36]) {
+  HDRF_UNROLL
   for (int k = 0; k < 36; ++k) L[k] = 0;
+  HDRF_UNROLL
   for (int j = 0; j < 6; ++j) {
     double d = A[6 * j + j];
+    HDRF_UNROLL
     for (int k = 0; k < j; ++k) d -= L[6 * j + k] * L[6 * j + k];
     if (!(d > 0)) return false;
     const double s = sqrt(d);
     L[6 * j + j] = s;
+    HDRF_UNROLL
     for (int i = j + 1; i < 6; ++i) {
       double v = A[6 * i + j];
+      HDRF_UNROLL
       for (int k = 0; k < j; ++k) v -= L[6 * i + k] * L[6 * j + k];
       L[6 * i + j] = v / s;
     }
@@ -233,7 +250,9 @@ enum StepOutcome : int {
 HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
   if (acc.v[31] + acc.v[32] < 12) return kStepTooFew;
   double H[36], g[6];
+  HDRF_UNROLL
   for (int i = 0, k = 0; i < 6; ++i) {
+    HDRF_UNROLL
     for (int j = i; j < 6; ++j, ++k) H[6 * i + j] = H[6 * j + i] = acc.v[k];
     g[i] = acc.v[GnSystem::kH + i];
   }
@@ -247,29 +266,39 @@ HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
       // times its trace (>= the largest eigenvalue), nothing would be raised: the
       // decomposition is skipped (a Cholesky factor tells).
       double sw[6], ew[6], Hw[36];
+      HDRF_UNROLL
       for (int i = 0; i < 6; ++i) sw[i] = i < 3 ? prior.sigma_m : prior.sigma_rad, ew[i] = e[i] / sw[i];
       double trace = 0;
+      HDRF_UNROLL
       for (int i = 0; i < 6; ++i)
+        HDRF_UNROLL
         for (int j = 0; j < 6; ++j) Hw[6 * i + j] = sw[i] * H[6 * i + j] * sw[j];
+      HDRF_UNROLL
       for (int i = 0; i < 6; ++i) trace += Hw[7 * i];
       double shifted[36], L[36];
+      HDRF_UNROLL
       for (int k = 0; k < 36; ++k) shifted[k] = Hw[k] - (k % 7 == 0 ? prior.floor * trace : 0.0);
       if (!Cholesky6(shifted, L)) {
         double lam[6], V[36];
         SymmetricEigen6(Hw, lam, V);
         const double top = lam[5];
+        HDRF_UNROLL
         for (int k = 0; k < 6; ++k) {
           const double add = prior.floor * top - lam[k];
           if (!(add > 0)) continue;
           double u[6], vew = 0;
+          HDRF_UNROLL
           for (int i = 0; i < 6; ++i) u[i] = V[6 * i + k] / sw[i], vew += V[6 * i + k] * ew[i];
+          HDRF_UNROLL
           for (int i = 0; i < 6; ++i) {
+            HDRF_UNROLL
             for (int j = 0; j < 6; ++j) H[6 * i + j] += add * u[i] * u[j];
             g[i] += add * u[i] * vew;
           }
         }
       }
     }
+    HDRF_UNROLL
     for (int i = 0; i < 6; ++i) {
       const double s = i < 3 ? prior.sigma_m : prior.sigma_rad;
       const double lambda = 1.0 / (s * s);
@@ -278,17 +307,23 @@ HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
     }
   }
   double trace = 0;
+  HDRF_UNROLL
   for (int i = 0; i < 6; ++i) trace += H[7 * i];
+  HDRF_UNROLL
   for (int i = 0; i < 6; ++i) H[7 * i] += 1e-6 * trace / 6.0;
   double L[36], xi[6], y[6];
   if (!Cholesky6(H, L)) return kStepNotFinite;
+  HDRF_UNROLL
   for (int i = 0; i < 6; ++i) {  // L y = -g
     double v = -g[i];
+    HDRF_UNROLL
     for (int k = 0; k < i; ++k) v -= L[6 * i + k] * y[k];
     y[i] = v / L[7 * i];
   }
+  HDRF_UNROLL
   for (int i = 5; i >= 0; --i) {  // L^T xi = y
     double v = y[i];
+    HDRF_UNROLL
     for (int k = i + 1; k < 6; ++k) v -= L[6 * k + i] * xi[k];
     xi[i] = v / L[7 * i];
   }

@@ -29,11 +29,11 @@ struct FrameParams {
   IcpArgs icp[4];
   PhotoArgs photo[4];
 };
-// A tracking run's state on the device: the pose, when the level stops, the counts, the
+// A tracking run's state on the device: the pose, the counts, the
 // finest level's last system, and the term arguments at the current pose.
 struct DeviceRun {
   PoseD T;
-  int stop, skip, iterations, level_iterations[4];
+  int iterations, level_iterations[4];
   GnSystem last;
   IcpArgs icp;
   PhotoArgs photo;
@@ -46,20 +46,14 @@ struct DeviceTrack {
 __global__ void StartRun(DeviceTrack* d) {
   DeviceRun& s = d->run;
   s.T = d->frame.initial;
-  s.stop = s.skip = s.iterations = 0;
+  s.iterations = 0;
   for (int k = 0; k < 4; ++k) s.level_iterations[k] = 0;
   for (int k = 0; k < GnSystem::kSize; ++k) s.last.v[k] = 0;
 }
 
-// Before each sum: skipped once the level has stopped (its first iteration always runs),
-// else the term arguments of the level at the pose the last step left.
-__global__ void PrepareIteration(DeviceTrack* d, int level, bool first) {
+// The term arguments of a level at the run's current pose.
+__device__ void SetPoseArgs(DeviceTrack* d, int level) {
   DeviceRun& s = d->run;
-  if (!first && s.stop) {
-    s.skip = 1;
-    return;
-  }
-  s.skip = 0;
   const PoseD T = s.T;
   IcpArgs icp = d->frame.icp[level];
   PhotoArgs photo = d->frame.photo[level];
@@ -68,6 +62,26 @@ __global__ void PrepareIteration(DeviceTrack* d, int level, bool first) {
   photo.T_live_world = ToRigid(Inverse(T));
   s.icp = icp;
   s.photo = photo;
+}
+__global__ void StartLevel(DeviceTrack* d, int level) { SetPoseArgs(d, level); }
+
+// One step from the level's sums (a kernel of its own: inside the sum's kernel its registers
+// would be the whole sum's), and whether the level goes on: fewer steps than its cap, the
+// last neither converged nor failed.
+__global__ void TakeStep(DeviceTrack* d, const double* sums, int level, int cap, cudaGraphConditionalHandle go_on) {
+  DeviceRun& s = d->run;
+  GnSystem acc;
+  for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
+  const int out = GnStep(acc, d->frame.prior, &s.T);
+  bool more = false;
+  if (out == kStepTaken || out == kStepConverged) {
+    ++s.iterations;
+    ++s.level_iterations[level];
+    if (level == 0) s.last = acc;
+    more = out == kStepTaken && s.level_iterations[level] < cap;
+  }
+  if (more) SetPoseArgs(d, level);
+  cudaGraphSetConditional(go_on, more ? 1u : 0u);
 }
 
 // What a captured run depends on besides its frame's parameters.
@@ -83,69 +97,77 @@ struct GpuNormalEquations::Impl {
   par::Reducer reducer{GnSystem::kSize};
   DeviceBuffer<DeviceTrack> track{1};
   DeviceTrack* host = nullptr;  // pinned: the frame's parameters out, the run's state back
-  cudaStream_t stream = nullptr;
+  cudaStream_t stream = nullptr, body_stream = nullptr;
   cudaEvent_t ready = nullptr;
   cudaGraphExec_t graph = nullptr;
   GraphShape shape;
   Impl() {
     HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceTrack)));
     HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
+    HDRF_CUDA_CHECK(cudaStreamCreate(&body_stream));
     HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
   }
   ~Impl() {
     if (graph) cudaGraphExecDestroy(graph);
     cudaEventDestroy(ready);
+    cudaStreamDestroy(body_stream);
     cudaStreamDestroy(stream);
     cudaFreeHost(host);
   }
 };
 
-// The whole run as one CUDA graph: the parameters' upload, the start, every level's
-// iterations (a preparation and a sum whose last block takes the step), the state's
-// read-back. Launched as one, it leaves the GPU nothing to wait for from the host between
-// iterations; it is captured again only when the shape changes (levels, iterations, sizes).
+// The whole run as one CUDA graph: the parameters' upload, the start, each level's
+// iterations as a loop node (its body one sum and the step, which says whether to go on),
+// the state's read-back. Launched as one, it leaves the GPU nothing to wait for
+// from the host and runs no more sums than the steps take; it is captured again only when
+// its shape changes (levels, iteration caps, sizes, terms).
 namespace {
 cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* host, cudaStream_t stream,
-                           const GraphShape& g) {
-  HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, cudaStreamCaptureModeThreadLocal));
+                           cudaStream_t body_stream, const GraphShape& g) {
+  constexpr cudaStreamCaptureMode kMode = cudaStreamCaptureModeThreadLocal;
+  HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, kMode));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&d->frame, &host->frame, sizeof(FrameParams), cudaMemcpyHostToDevice, stream));
   StartRun<<<1, 1, 0, stream>>>(d);
   const bool use_icp = g.icp, use_photo = g.photo;
   for (int l = g.levels - 1; l >= 0; --l) {
     const int iters = g.iterations[std::size_t(g.levels - 1 - l)];
-    for (int it = 0; it < iters; ++it) {
-      PrepareIteration<<<1, 1, 0, stream>>>(d, l, it == 0);
-      const DeviceTrack* rd = d;
-      reducer.SumOnDevice<GnSystem>(
-          g.width[std::size_t(l)], g.height[std::size_t(l)],
-          [=] __device__(int x, int y, GnSystem& acc) {
-            if (use_icp) IcpTerm(rd->run.icp, x, y, acc);
-            if (use_photo) PhotoTerm(rd->run.photo, x, y, acc);
-          },
-          [=] __device__() { return rd->run.skip == 0; },
-          [=] __device__(const double* sums) {
-            DeviceRun& s = d->run;
-            GnSystem acc;
-            for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
-            const int out = GnStep(acc, d->frame.prior, &s.T);
-            if (out == kStepTooFew || out == kStepNotFinite) {
-              s.stop = 1;
-              return;
-            }
-            ++s.iterations;
-            ++s.level_iterations[l];
-            if (l == 0) s.last = acc;
-            s.stop = out == kStepConverged ? 1 : 0;
-          },
-          stream);
-    }
+    if (iters <= 0) continue;
+    StartLevel<<<1, 1, 0, stream>>>(d, l);
+    // The loop node, after what the capture holds so far.
+    cudaStreamCaptureStatus status;
+    cudaGraph_t captured = nullptr;
+    const cudaGraphNode_t* deps = nullptr;
+    std::size_t n_deps = 0;
+    HDRF_CUDA_CHECK(cudaStreamGetCaptureInfo(stream, &status, nullptr, &captured, &deps, nullptr, &n_deps));
+    cudaGraphConditionalHandle go_on;
+    HDRF_CUDA_CHECK(cudaGraphConditionalHandleCreate(&go_on, captured, 1, cudaGraphCondAssignDefault));
+    cudaGraphNodeParams p{};
+    p.type = cudaGraphNodeTypeConditional;
+    p.conditional.handle = go_on;
+    p.conditional.type = cudaGraphCondTypeWhile;
+    p.conditional.size = 1;
+    cudaGraphNode_t loop;
+    HDRF_CUDA_CHECK(cudaGraphAddNode(&loop, captured, deps, nullptr, n_deps, &p));
+    HDRF_CUDA_CHECK(cudaStreamUpdateCaptureDependencies(stream, &loop, nullptr, 1, cudaStreamSetCaptureDependencies));
+    HDRF_CUDA_CHECK(cudaStreamBeginCaptureToGraph(body_stream, p.conditional.phGraph_out[0], nullptr, nullptr, 0, kMode));
+    const DeviceTrack* rd = d;
+    reducer.SumOnDevice<GnSystem>(
+        g.width[std::size_t(l)], g.height[std::size_t(l)],
+        [=] __device__(int x, int y, GnSystem& acc) {
+          if (use_icp) IcpTerm(rd->run.icp, x, y, acc);
+          if (use_photo) PhotoTerm(rd->run.photo, x, y, acc);
+        },
+        par::detail::Always{}, par::detail::NoFinish{}, body_stream);
+    TakeStep<<<1, 1, 0, body_stream>>>(d, reducer.device_sums(), l, iters, go_on);
+    cudaGraph_t body = nullptr;
+    HDRF_CUDA_CHECK(cudaStreamEndCapture(body_stream, &body));
   }
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&host->run, &d->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, stream));
-  cudaGraph_t captured = nullptr;
-  HDRF_CUDA_CHECK(cudaStreamEndCapture(stream, &captured));
+  cudaGraph_t whole = nullptr;
+  HDRF_CUDA_CHECK(cudaStreamEndCapture(stream, &whole));
   cudaGraphExec_t graph = nullptr;
-  const cudaError_t made = cudaGraphInstantiate(&graph, captured, 0);
-  cudaGraphDestroy(captured);
+  const cudaError_t made = cudaGraphInstantiate(&graph, whole, 0);
+  cudaGraphDestroy(whole);
   HDRF_CUDA_CHECK(made);
   return graph;
 }
@@ -188,7 +210,7 @@ GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels,
   if (!m.graph || !(g == m.shape)) {
     if (m.graph) HDRF_CUDA_CHECK(cudaGraphExecDestroy(m.graph));
     m.graph = nullptr;
-    m.graph = CaptureRun(m.reducer, m.track.data(), m.host, m.stream, g);
+    m.graph = CaptureRun(m.reducer, m.track.data(), m.host, m.stream, m.body_stream, g);
     m.shape = g;
   }
   // After whatever the default stream has queued (the live pyramid, the reference).
