@@ -93,13 +93,28 @@ HDRF_HD float GradYPixel(ImageView<const float> im, int x, int y) {
   return (y > 0 && y + 1 < im.height) ? 0.5f * (im(x, y + 1) - im(x, y - 1)) : 0.f;
 }
 
+// A bilinear sampling position in images of one size, found once for several images.
+struct BilinearAt {
+  int ix = 0, iy = 0;
+  float ax = 0, ay = 0;
+  // False when a needed neighbour is outside a width x height image.
+  HDRF_HD bool Set(int width, int height, float x, float y) {
+    if (x < 0.f || y < 0.f || x > float(width) - 1.001f || y > float(height) - 1.001f) return false;
+    ix = int(x), iy = int(y);
+    ax = x - float(ix), ay = y - float(iy);
+    return true;
+  }
+  HDRF_HD float operator()(ImageView<const float> img) const {
+    return (1 - ay) * ((1 - ax) * img(ix, iy) + ax * img(ix + 1, iy)) +
+           ay * ((1 - ax) * img(ix, iy + 1) + ax * img(ix + 1, iy + 1));
+  }
+};
+
 // Bilinear sample; false when a needed neighbour is outside.
 HDRF_HD bool SampleBilinear(ImageView<const float> img, float x, float y, float* out) {
-  if (x < 0.f || y < 0.f || x > float(img.width) - 1.001f || y > float(img.height) - 1.001f) return false;
-  const int ix = int(x), iy = int(y);
-  const float ax = x - float(ix), ay = y - float(iy);
-  *out = (1 - ay) * ((1 - ax) * img(ix, iy) + ax * img(ix + 1, iy)) +
-         ay * ((1 - ax) * img(ix, iy + 1) + ax * img(ix + 1, iy + 1));
+  BilinearAt at;
+  if (!at.Set(img.width, img.height, x, y)) return false;
+  *out = at(img);
   return true;
 }
 

@@ -66,8 +66,10 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
 // Sums a per-pixel term over a w x h grid on the CPU threads: each thread sums its own rows
-// (a static schedule), and the partial sums are added in thread order, so the result is the
-// same on every run with the same number of threads. Each thread sums on its own stack (the
+// (a static schedule of 4-row chunks dealt in turn: the valid pixels of a view are not spread
+// evenly over its height, and whole halves left one thread waiting for the other), and the
+// partial sums are added in thread order, so the result is the same on every run with the
+// same number of threads. Each thread sums on its own stack (the
 // partial sums side by side in one array shared cache lines: every pixel's update moved a
 // line between the cores) and stores its sum once.
 template <typename Term>
@@ -76,7 +78,7 @@ void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
 #pragma omp parallel
   {
     GnSystem local;
-#pragma omp for schedule(static) nowait
+#pragma omp for schedule(static, 4) nowait
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) term(x, y, local);
     partial[std::size_t(omp_get_thread_num())] = local;

@@ -66,7 +66,7 @@ struct IcpArgs {
 HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
   const Float3 v = a.live_vertex(x, y);
   const Float3 nl = a.live_normal(x, y);
-  if (v.z <= 0.f || Length(nl) == 0.f) return false;
+  if (v.z <= 0.f || Dot(nl, nl) == 0.f) return false;  // (a length is 0 exactly where this is)
   const Float3 p = a.T_world_live.Apply(v);
   const Float3 pr = a.T_ref_world.Apply(p);
   if (pr.z <= 0.f) return false;
@@ -74,7 +74,7 @@ HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
   const int ux = RoundToInt(u.x), uy = RoundToInt(u.y);
   if (ux < 0 || uy < 0 || ux >= a.ref_cam.width || uy >= a.ref_cam.height) return false;
   const Float3 m = a.ref_vertex(ux, uy), n = a.ref_normal(ux, uy);
-  if (Length(n) == 0.f) return false;
+  if (Dot(n, n) == 0.f) return false;
   const Float3 d = p - m;
   if (Length(d) > a.max_dist) return false;
   if (Dot(n, a.T_world_live.Rotate(nl)) < a.cos_max_angle) return false;
@@ -112,11 +112,12 @@ HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, GnSystem& acc) {
   if (q.z <= 0.1f) return false;
   const PinholeCamera& c = a.live_cam;
   const Float2 u = c.Project(q);
-  float il, gx = 0.f, gy = 0.f, wl;
-  if (!imaging::SampleBilinear(a.live_intensity, u.x, u.y, &il)) return false;
-  if (!imaging::SampleBilinear(a.live_weight, u.x, u.y, &wl) || wl <= 0.f) return false;
-  imaging::SampleBilinear(a.live_gx, u.x, u.y, &gx);
-  imaging::SampleBilinear(a.live_gy, u.x, u.y, &gy);
+  // The live level's images share one size: the position is found once for all four.
+  imaging::BilinearAt at;
+  if (!at.Set(a.live_intensity.width, a.live_intensity.height, u.x, u.y)) return false;
+  const float wl = at(a.live_weight);
+  if (wl <= 0.f) return false;
+  const float il = at(a.live_intensity), gx = at(a.live_gx), gy = at(a.live_gy);
   const double r = double(i_ref) - double(il);
   const double iz = 1.0 / double(q.z);
   // d(pi)/dq times dq/dxi, with dq/dxi = [-I, [q]x] for T_live <- T_live exp(xi).

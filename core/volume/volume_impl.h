@@ -257,22 +257,49 @@ struct VolumeView {
     return &pool[long(slot[k]) * 512 + ((cz & 7) * 8 + (cy & 7)) * 8 + (cx & 7)];
   }
 
+  // The eight corners of the trilinear cell at (x, y, z) when they all lie in one brick (a
+  // cell off the brick's last voxel along every axis: 343 of its 512), else nullptr: corner
+  // k = dx + 2 dy + 4 dz is at base + dx + 8 dy + 64 dz. Null too where that brick is absent.
+  HDRF_HD const V* CellInOneBrick(int x, int y, int z, const BrickHint& hint) const {
+    if ((x & 7) == 7 || (y & 7) == 7 || (z & 7) == 7) return nullptr;
+    const int bx = x >> 3, by = y >> 3, bz = z >> 3;
+    const int slot = hint.valid && bx == hint.bx && by == hint.by && bz == hint.bz ? hint.slot : Slot(bx, by, bz);
+    return slot < 0 ? nullptr : &pool[long(slot) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
+  }
+  HDRF_HD static int CornerOffset(int k) { return (k & 1) + 8 * ((k >> 1) & 1) + 64 * (k >> 2); }
+
   // Trilinear TSDF over the observed corners, renormalised; undefined (false) when the
-  // observed corners carry less than half of the interpolation weight.
-  HDRF_HD bool SampleTsdf(Float3 p, float* out, const BrickHint& hint = BrickHint{}) const {
+  // observed corners carry less than half of the interpolation weight. A cell inside one
+  // brick takes the short way (one look-up, fixed offsets) unless `short_way` is off (tests);
+  // both ways add the same corners in the same order, so they give the same bits.
+  HDRF_HD bool SampleTsdf(Float3 p, float* out, const BrickHint& hint = BrickHint{}, bool short_way = true) const {
     const Float3 g = Grid(p);
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
-    int slot[8];
-    CornerSlots(x, y, z, hint, slot);
     float acc = 0.f, wsum = 0.f;
-    for (int k = 0; k < 8; ++k) {
-      const V* v = Corner(slot, x, y, z, k);
-      if (!v || v->W() <= 0.f) continue;
-      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-      acc += w * v->Tsdf();
-      wsum += w;
+    const V* base = short_way ? CellInOneBrick(x, y, z, hint) : nullptr;
+    if (base) {
+      const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
+      HDRF_UNROLL
+      for (int k = 0; k < 8; ++k) {
+        const V& v = base[CornerOffset(k)];
+        if (v.W() <= 0.f) continue;
+        const float w = wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2];
+        acc += w * v.Tsdf();
+        wsum += w;
+      }
+    } else {
+      if (short_way && !((x & 7) == 7 || (y & 7) == 7 || (z & 7) == 7)) return false;  // its one brick is absent
+      int slot[8];
+      CornerSlots(x, y, z, hint, slot);
+      for (int k = 0; k < 8; ++k) {
+        const V* v = Corner(slot, x, y, z, k);
+        if (!v || v->W() <= 0.f) continue;
+        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
+        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
+        acc += w * v->Tsdf();
+        wsum += w;
+      }
     }
     if (wsum < 0.5f) return false;
     *out = acc / wsum;
@@ -280,22 +307,38 @@ struct VolumeView {
   }
 
   // Trilinear radiance and NR over the corners with radiance weight; false if none has any.
-  HDRF_HD bool SampleRadiance(Float3 p, Float3* rad, float* nr) const {
+  // The short way as SampleTsdf's.
+  HDRF_HD bool SampleRadiance(Float3 p, Float3* rad, float* nr, const BrickHint& hint = BrickHint{},
+                              bool short_way = true) const {
     const Float3 g = Grid(p);
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
-    int slot[8];
-    CornerSlots(x, y, z, BrickHint{}, slot);
     Float3 r{0, 0, 0};
     float nn = 0.f, wsum = 0.f;
-    for (int k = 0; k < 8; ++k) {
-      const V* v = Corner(slot, x, y, z, k);
-      if (!v || v->Wr() <= 0.f) continue;
-      const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-      const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-      r += v->Radiance() * w;
-      nn += v->Nr() * w;
-      wsum += w;
+    const V* base = short_way ? CellInOneBrick(x, y, z, hint) : nullptr;
+    if (base) {
+      const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
+      HDRF_UNROLL
+      for (int k = 0; k < 8; ++k) {
+        const V& v = base[CornerOffset(k)];
+        if (v.Wr() <= 0.f) continue;
+        const float w = wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2];
+        r += v.Radiance() * w;
+        nn += v.Nr() * w;
+        wsum += w;
+      }
+    } else if (!short_way || (x & 7) == 7 || (y & 7) == 7 || (z & 7) == 7) {
+      int slot[8];
+      CornerSlots(x, y, z, hint, slot);
+      for (int k = 0; k < 8; ++k) {
+        const V* v = Corner(slot, x, y, z, k);
+        if (!v || v->Wr() <= 0.f) continue;
+        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
+        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
+        r += v->Radiance() * w;
+        nn += v->Nr() * w;
+        wsum += w;
+      }
     }
     if (wsum < 1e-3f) return false;
     *rad = r / wsum;
@@ -303,13 +346,14 @@ struct VolumeView {
     return true;
   }
 
-  // Normal from the TSDF gradient (central differences one voxel apart).
-  HDRF_HD bool Gradient(Float3 p, Float3* nrm) const {
+  // Normal from the TSDF gradient (central differences one voxel apart). `hint` (a brick
+  // near p already looked up) spares the samples' hash look-ups in that brick.
+  HDRF_HD bool Gradient(Float3 p, Float3* nrm, const BrickHint& hint = BrickHint{}) const {
     const float h = voxel_m;
     float fx0, fx1, fy0, fy1, fz0, fz1;
-    if (!SampleTsdf(p - Float3{h, 0, 0}, &fx0) || !SampleTsdf(p + Float3{h, 0, 0}, &fx1) ||
-        !SampleTsdf(p - Float3{0, h, 0}, &fy0) || !SampleTsdf(p + Float3{0, h, 0}, &fy1) ||
-        !SampleTsdf(p - Float3{0, 0, h}, &fz0) || !SampleTsdf(p + Float3{0, 0, h}, &fz1))
+    if (!SampleTsdf(p - Float3{h, 0, 0}, &fx0, hint) || !SampleTsdf(p + Float3{h, 0, 0}, &fx1, hint) ||
+        !SampleTsdf(p - Float3{0, h, 0}, &fy0, hint) || !SampleTsdf(p + Float3{0, h, 0}, &fy1, hint) ||
+        !SampleTsdf(p - Float3{0, 0, h}, &fz0, hint) || !SampleTsdf(p + Float3{0, 0, h}, &fz1, hint))
       return false;
     const Float3 g{fx1 - fx0, fy1 - fy0, fz1 - fz0};
     const float len = Length(g);
@@ -472,13 +516,13 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
       const float ts = prev_t + (t - prev_t) * prev_f / (prev_f - f);
       const Float3 ps = o + dw * ts;
       Float3 nrm;
-      if (V.Gradient(ps, &nrm)) {
+      if (V.Gradient(ps, &nrm, hint)) {  // the brick of this step's sample, near ps
         hit.vertex = ps;
         hit.normal = nrm;
         hit.depth = ts * dc.z;
         Float3 rad;
         float nrv;
-        if (V.SampleRadiance(ps, &rad, &nrv)) {
+        if (V.SampleRadiance(ps, &rad, &nrv, hint)) {
           hit.radiance = rad;
           hit.nr = nrv;
         }

@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 
 #include "common/error.h"
@@ -160,6 +161,70 @@ TEST(Volume, RaysStartedNearTheFusedDepthFindTheSameSurface) {
   // The guide decides where rays begin: it must come from the depth fused at that pose.
   EXPECT_GT(in_guided, 30000);
   EXPECT_GE(double(deeper), 0.95 * double(in_guided));
+}
+
+// The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
+// gives exactly the bits of the general way (each corner's brick found on its own), with and
+// without a hint, for every encoding: the ray cast and the tracker's reference do not change.
+TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
+  const auto frames = Frames(6, sim::AeMode::kFixed);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    volume::VolumeOptions vo;
+    vo.encoding = enc;
+    volume::Volume vol(vo);
+    for (const auto& f : frames) {
+      const DepthImage depth = Metres(f.depth);
+      const auto v = imaging::VertexMap(depth, cam);
+      const auto n = imaging::NormalMap(v);
+      Image<float> one(320, 240, 1.f);
+      RadianceImage r = f.radiance.Clone();
+      vol.Integrate({&depth, &n, &r, &one, &one, &one, cam, T0inv * f.T_world_camera});
+    }
+    volume::VisitEncoding(enc, [&](auto tag) {
+      using V = decltype(tag);
+      const volume::VolumeView<V> vv = vol.view<V>();
+      // Points along the last view's rays, around the surface it shows and between.
+      const DepthImage depth = Metres(frames.back().depth);
+      const Pose T = T0inv * frames.back().T_world_camera;
+      std::uint32_t state = 12345u;
+      auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+      long tsdf_both = 0, tsdf_short = 0, rad_both = 0, differ = 0, one_brick = 0;
+      for (int i = 0; i < 200000; ++i) {
+        const int x = int(uniform() * 319.f), y = int(uniform() * 239.f);
+        const float z = depth(x, y) > 0 ? depth(x, y) + (uniform() - 0.5f) * 4.f * vo.truncation_m() : 1.f + 3.f * uniform();
+        const Eigen::Vector3d pw = T * Eigen::Vector3d(cam.BackProject(float(x), float(y), z).x,
+                                                       cam.BackProject(float(x), float(y), z).y, z);
+        const Float3 p{float(pw.x()), float(pw.y()), float(pw.z())};
+        const Float3 g = vv.Grid(p);
+        const int gx = int(std::floor(g.x)), gy = int(std::floor(g.y)), gz = int(std::floor(g.z));
+        one_brick += (gx & 7) != 7 && (gy & 7) != 7 && (gz & 7) != 7;
+        typename volume::VolumeView<V>::BrickHint hint;
+        if (i % 2) {  // half with the brick of a point a voxel away as the hint
+          hint.bx = (gx + 1) >> 3, hint.by = gy >> 3, hint.bz = gz >> 3, hint.valid = true;
+          hint.slot = vv.Slot(hint.bx, hint.by, hint.bz);
+        }
+        float a = -7.f, b = -7.f;
+        const bool sa = vv.SampleTsdf(p, &a, hint), sb = vv.SampleTsdf(p, &b, hint, false);
+        tsdf_short += sa;
+        if (sa != sb || std::memcmp(&a, &b, sizeof a) != 0) ++differ;
+        tsdf_both += sa && sb;
+        Float3 ra{-7, -7, -7}, rb{-7, -7, -7};
+        float na = -7.f, nb = -7.f;
+        const bool qa = vv.SampleRadiance(p, &ra, &na, hint), qb = vv.SampleRadiance(p, &rb, &nb, hint, false);
+        if (qa != qb || std::memcmp(&ra, &rb, sizeof ra) != 0 || std::memcmp(&na, &nb, sizeof na) != 0) ++differ;
+        rad_both += qa && qb;
+      }
+      std::printf("%s: %ld of 200000 points in one brick's cell; TSDF defined at %ld, radiance at %ld; %ld differ\n",
+                  volume::VoxelEncodingName(enc), one_brick, tsdf_both, rad_both, differ);
+      EXPECT_EQ(differ, 0);
+      EXPECT_GT(tsdf_both, 40000);  // the comparison covers many defined samples of both kinds
+      EXPECT_GT(rad_both, 40000);
+      EXPECT_GT(one_brick, 100000);
+      EXPECT_LT(one_brick, 180000);
+    });
+  }
 }
 
 TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {
