@@ -90,6 +90,7 @@ struct FullVoxel {
   HDRF_HD float Nr() const { return v.nr; }
   HDRF_HD Voxel Decode() const { return v; }
   HDRF_HD void Store(const Voxel& x) { v = x; }
+  HDRF_HD void StoreDistance(float t, float w) { v.tsdf = t, v.w = w; }  // the rest kept
 };
 struct NoNrVoxel {
   float tsdf = 1, w = 0;
@@ -108,6 +109,7 @@ struct NoNrVoxel {
     radiance = x.radiance;
     wr = x.wr;
   }
+  HDRF_HD void StoreDistance(float t, float weight) { tsdf = t, w = weight; }
 };
 struct CompactVoxel {
   std::int16_t tsdf = 32767;
@@ -125,13 +127,18 @@ struct CompactVoxel {
   HDRF_HD float Nr() const { return 0.f; }
   HDRF_HD Voxel Decode() const { return {Tsdf(), W(), Radiance(), 0.f, Wr()}; }
   HDRF_HD void Store(const Voxel& x) {
-    const float t = x.tsdf > 1.f ? 1.f : (x.tsdf < -1.f ? -1.f : x.tsdf);
-    tsdf = std::int16_t(RoundToInt(t * 32767.f));
-    w = Weight(x.w);
+    StoreDistance(x.tsdf, x.w);
     r = FloatToHalf(x.radiance.x);
     g = FloatToHalf(x.radiance.y);
     b = FloatToHalf(x.radiance.z);
     wr = Weight(x.wr);
+  }
+  // The distance and its weight only; the radiance's bits kept (re-encoding them would give
+  // the same bits: every half converts to a float and back exactly).
+  HDRF_HD void StoreDistance(float t_in, float weight) {
+    const float t = t_in > 1.f ? 1.f : (t_in < -1.f ? -1.f : t_in);
+    tsdf = std::int16_t(RoundToInt(t * 32767.f));
+    w = Weight(weight);
   }
 };
 
@@ -433,22 +440,27 @@ HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i
   const Float3 nrm = a.normals(u, v);
   const float cosv = fabsf(Dot(nrm, ray));
   const float wf = Length(nrm) > 0.f ? (cosv > 0.05f ? cosv : 0.05f) : 0.05f;
-  Voxel vx = stored.Decode();
-  vx.tsdf = (vx.w * vx.tsdf + wf * f) / (vx.w + wf);
-  vx.w = vx.w + wf < a.max_weight ? vx.w + wf : a.max_weight;
-  int done = 1;
+  // The distance first; the radiance is decoded and stored again only where it changes (a
+  // voxel in free space or out of the radiance's reach keeps its radiance's bits).
+  const float w0 = stored.W(), t0 = stored.Tsdf();
+  const float tsdf = (w0 * t0 + wf * f) / (w0 + wf);
+  const float w = w0 + wf < a.max_weight ? w0 + wf : a.max_weight;
   if (fabsf(sdf) < trunc && a.radiance.data && a.max_confidence(u, v) > a.tau0 && cosv >= a.cos_tau1) {
     const float wr = a.confidence(u, v);
     if (wr > 0.f) {
+      Voxel vx = stored.Decode();
+      vx.tsdf = tsdf;
+      vx.w = w;
       const Float3 live = a.radiance(u, v) * a.radiance_scale;
       vx.radiance = (vx.radiance * vx.wr + live * wr) / (vx.wr + wr);
       if constexpr (V::kStoresNr) vx.nr = (vx.nr * vx.wr + a.nr(u, v) * wr) / (vx.wr + wr);
       vx.wr = vx.wr + wr < a.max_radiance_weight ? vx.wr + wr : a.max_radiance_weight;
-      done |= 2;
+      stored.Store(vx);
+      return 3;
     }
   }
-  stored.Store(vx);
-  return done;
+  stored.StoreDistance(tsdf, w);
+  return 1;
 }
 
 // ---- Ray casting ------------------------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 
 #include "common/error.h"
 #include "support/sim_frames.h"
@@ -401,6 +402,110 @@ namespace {
 // One voxel's update: in front of the surface it stores the signed distance over the
 // truncation (capped at 1), weighted by |n.v|; radiance only near the surface, above tau0
 // and with its confidence as weight; behind the truncation band nothing.
+// The whole voxel decoded, updated and encoded again (the update as it was before voxels in
+// free space kept their radiance's bits): the reference the stored voxels must equal.
+template <typename V>
+int IntegrateVoxelWhole(const volume::IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
+  using namespace volume;
+  const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
+  const float vs = a.voxel_m, trunc = a.trunc_m;
+  const Float3 pw{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs, (float(bz * 8 + lz) + 0.5f) * vs};
+  const Float3 pc = a.T_camera_world.Apply(pw);
+  if (pc.z <= 0.05f) return 0;
+  const Float2 px = a.cam.Project(pc);
+  const int u = RoundToInt(px.x), v = RoundToInt(px.y);
+  if (u < 0 || v < 0 || u >= a.cam.width || v >= a.cam.height) return 0;
+  const float zd = a.depth(u, v);
+  if (!(zd > 0.f)) return 0;
+  const float sdf = zd - pc.z;
+  if (sdf < -trunc) return 0;
+  const float f = sdf / trunc < 1.f ? sdf / trunc : 1.f;
+  const Float3 ray = Normalized(pc);
+  const Float3 nrm = a.normals(u, v);
+  const float cosv = fabsf(Dot(nrm, ray));
+  const float wf = Length(nrm) > 0.f ? (cosv > 0.05f ? cosv : 0.05f) : 0.05f;
+  Voxel vx = stored.Decode();
+  vx.tsdf = (vx.w * vx.tsdf + wf * f) / (vx.w + wf);
+  vx.w = vx.w + wf < a.max_weight ? vx.w + wf : a.max_weight;
+  int done = 1;
+  if (fabsf(sdf) < trunc && a.radiance.data && a.max_confidence(u, v) > a.tau0 && cosv >= a.cos_tau1) {
+    const float wr = a.confidence(u, v);
+    if (wr > 0.f) {
+      const Float3 live = a.radiance(u, v) * a.radiance_scale;
+      vx.radiance = (vx.radiance * vx.wr + live * wr) / (vx.wr + wr);
+      if constexpr (V::kStoresNr) vx.nr = (vx.nr * vx.wr + a.nr(u, v) * wr) / (vx.wr + wr);
+      vx.wr = vx.wr + wr < a.max_radiance_weight ? vx.wr + wr : a.max_radiance_weight;
+      done |= 2;
+    }
+  }
+  stored.Store(vx);
+  return done;
+}
+
+// Integration stores only the distance where the radiance does not change: every voxel of
+// every brick a scan's frames touch, in every encoding, ends with exactly the bytes the whole
+// decode-update-encode gives, frame after frame.
+TEST(IntegrateVoxel, DistanceOnlyUpdatesKeepTheWholeUpdatesBytes) {
+  const auto frames = Frames(8, sim::AeMode::kFlicker);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    volume::VolumeOptions vo;
+    vo.encoding = enc;
+    volume::Volume vol(vo);
+    volume::VisitEncoding(enc, [&](auto tag) {
+      using V = decltype(tag);
+      long voxels = 0, distance_only = 0, with_radiance = 0, differ = 0;
+      for (std::size_t k = 0; k < frames.size(); ++k) {
+        const auto& fr = frames[k];
+        const DepthImage depth = Metres(fr.depth);
+        const auto vmap = imaging::VertexMap(depth, cam);
+        const auto n = imaging::NormalMap(vmap);
+        Image<float> conf(320, 240, 0.7f), maxconf(320, 240, 0.8f), nrimg(320, 240, 0.3f);
+        const RadianceImage r = fr.radiance.Clone();
+        const Pose T = T0inv * fr.T_world_camera;
+        // Each brick's voxels as they were, then the update both ways.
+        const std::size_t bricks_before = vol.allocated_bricks();
+        std::vector<V> before(bricks_before * 512);
+        if (bricks_before > 0) std::memcpy(before.data(), vol.view<V>().pool, before.size() * sizeof(V));
+        vol.Integrate({&depth, &n, &r, &nrimg, &conf, &maxconf, cam, T});
+        if (k == 0) continue;  // the first frame's bricks are all new
+        volume::IntegrateArgs a = volume::Volume::MakeIntegrateArgs(vo, cam, T, 1.f);
+        a.depth = View(depth);
+        a.normals = View(n);
+        a.radiance = View(r);
+        a.nr = View(nrimg);
+        a.confidence = View(conf);
+        a.max_confidence = View(maxconf);
+        // The bricks the frame names (as Integrate finds them); the others stay as they were.
+        std::set<std::uint64_t> named;
+        const RigidTransform Twc = ToRigidTransform(T);
+        for (int y = 0; y < 240; y += 2)
+          for (int x = 0; x < 320; x += 2)
+            volume::ForBricksAlongRay(a, Twc, x, y, [&](int bx, int by, int bz) { named.insert(volume::BrickKey(bx, by, bz)); });
+        const volume::VolumeView<V> vv = vol.view<V>();
+        for (std::size_t b = 0; b < bricks_before; ++b) {
+          const auto c = vol.bricks()[b];
+          const bool in_view = named.count(volume::BrickKey(c[0], c[1], c[2])) > 0;
+          for (int i = 0; i < 512; ++i) {
+            V whole = before[b * 512 + std::size_t(i)];
+            const int done = in_view ? IntegrateVoxelWhole(a, c[0], c[1], c[2], i, whole) : 0;
+            voxels += done != 0;
+            distance_only += done == 1;
+            with_radiance += done == 3;
+            differ += std::memcmp(&whole, &vv.pool[b * 512 + std::size_t(i)], sizeof(V)) != 0;
+          }
+        }
+      }
+      std::printf("%s: %ld voxel updates (%ld distance only, %ld with radiance), %ld differ\n",
+                  volume::VoxelEncodingName(enc), voxels, distance_only, with_radiance, differ);
+      EXPECT_EQ(differ, 0);
+      EXPECT_GT(distance_only, 100000);
+      EXPECT_GT(with_radiance, 20000);
+    });
+  }
+}
+
 TEST(IntegrateVoxel, RunningMeansOfDistanceAndRadiance) {
   const PinholeCamera cam{8, 8, 8.f, 8.f, 3.5f, 3.5f};
   Image<float> depth(8, 8, 1.0f), conf(8, 8, 0.5f), maxconf(8, 8, 0.6f), nr(8, 8, 0.25f);
