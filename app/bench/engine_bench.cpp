@@ -63,6 +63,7 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
         for (std::size_t i = kWarmup; i < frames.size(); ++i)
           for (std::size_t l = 0; l < 4; ++l)
             level_iterations[l] += session.reports()[i].tracking.level_iterations[l] / double(o.frames);
+        row.level_iterations = level_iterations;
         row.lost = session.lost();
         const double n = o.frames;
         row.ms = row.ms / n;
@@ -164,6 +165,17 @@ std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
                     stages[k].second, bytes[k] / 1e6, floor_ms, floor_ms > 0 ? stages[k].second / floor_ms : 0.0);
       out += line;
     }
+  }
+  // How the tracking stage's time divides over its iterations (what a faster sum or step buys).
+  out += "\nGauss-Newton iterations a frame (mean; levels finest first) and the tracking stage's time per iteration:\n\n"
+         "| device | voxel | size | iterations (level 0 / 1 / 2) | all | track ms per iteration |\n"
+         "|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    const double all = r.level_iterations[0] + r.level_iterations[1] + r.level_iterations[2] + r.level_iterations[3];
+    std::snprintf(line, sizeof line, "| %s | %s | %dx%d | %.1f / %.1f / %.1f | %.1f | %.4f |\n", DeviceName(r.device),
+                  volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.level_iterations[0], r.level_iterations[1],
+                  r.level_iterations[2], all, all > 0 ? r.ms.track / all : 0.0);
+    out += line;
   }
   return out;
 }

@@ -46,6 +46,7 @@ struct EngineBenchRow {
   // device's measured copy bandwidth (bytes/s): the stage's floor is their quotient.
   StageTimes bytes;
   double bandwidth = 0;
+  std::array<double, 4> level_iterations{};  // mean Gauss-Newton iterations a frame, finest level first
 };
 
 // Runs every device x case; `progress` is told each finished row.

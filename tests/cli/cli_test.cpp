@@ -231,6 +231,20 @@ TEST(Cli, BenchSetsEachStageAgainstItsBandwidthFloor) {
     }
   }
   EXPECT_EQ(stages, 5) << r.output;
+  // The tracking stage divided over its Gauss-Newton iterations: the levels' means add up to
+  // the frame's, and each iteration takes some of the stage's time.
+  const std::size_t it = r.output.find("iterations (level 0 / 1 / 2)");
+  ASSERT_NE(it, std::string::npos) << r.output;
+  const std::size_t row = r.output.find("| cpu | compact | 64x48 | ", it);
+  ASSERT_NE(row, std::string::npos) << r.output;
+  double l0 = -1, l1 = -1, l2 = -1, all = -1, per = -1;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + row, "| cpu | compact | 64x48 | %lf / %lf / %lf | %lf | %lf |", &l0, &l1, &l2,
+                        &all, &per),
+            5)
+      << r.output.substr(row, 120);
+  EXPECT_GT(l0, 0);
+  EXPECT_NEAR(l0 + l1 + l2, all, 0.25);  // each printed to a tenth
+  EXPECT_GT(per, 0);
 }
 
 }  // namespace
