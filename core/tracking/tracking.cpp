@@ -1,6 +1,5 @@
 #include "tracking/tracking.h"
 
-#include <omp.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -65,23 +64,24 @@ namespace {
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
-// Sums a per-pixel term over a w x h grid on the CPU threads: each thread sums its own rows
-// (a static schedule of 4-row chunks dealt in turn: the valid pixels of a view are not spread
-// evenly over its height, and whole halves left one thread waiting for the other), and the
-// partial sums are added in thread order, so the result is the same on every run with the
-// same number of threads. Each thread sums on its own stack (the
-// partial sums side by side in one array shared cache lines: every pixel's update moved a
-// line between the cores) and stores its sum once.
+// Sums a per-pixel term over a w x h grid on the CPU threads: the rows are cut into fixed
+// chunks of kChunkRows, each chunk summed on its own (by whichever thread is free: a thread
+// slowed by other work, the studio's window among them, no longer holds the others at the
+// end), and the chunks' sums are added in chunk order, so the result is the same on every
+// run whatever the number of threads. Each chunk sums on the stack (sums side by side in
+// one array shared cache lines: every pixel's update moved a line between the cores) and
+// stores its sum once.
 template <typename Term>
 void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
-  std::vector<GnSystem> partial(static_cast<std::size_t>(omp_get_max_threads()));
-#pragma omp parallel
-  {
+  constexpr int kChunkRows = 4;
+  const int chunks = (h + kChunkRows - 1) / kChunkRows;
+  std::vector<GnSystem> partial(static_cast<std::size_t>(chunks));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int c = 0; c < chunks; ++c) {
     GnSystem local;
-#pragma omp for schedule(static, 4) nowait
-    for (int y = 0; y < h; ++y)
+    for (int y = c * kChunkRows; y < std::min(h, (c + 1) * kChunkRows); ++y)
       for (int x = 0; x < w; ++x) term(x, y, local);
-    partial[std::size_t(omp_get_thread_num())] = local;
+    partial[std::size_t(c)] = local;
   }
   for (const GnSystem& p : partial) acc.Merge(p);
 }

@@ -6,6 +6,9 @@
 #include <map>
 #include <random>
 
+#include <omp.h>
+#include <cstring>
+
 #include <Eigen/Dense>
 
 #include "common/error.h"
@@ -54,6 +57,44 @@ TEST(Tracking, FollowsTheCameraThroughFourfoldExposureJumps) {
     EXPECT_LT(worst_t, kind == tracking::TrackerKind::kNr ? 0.012 : 0.006);
     EXPECT_LT(worst_r, 0.3);
   }
+}
+
+// The CPU's normal equations are summed in fixed row chunks added in chunk order: the same
+// bits whatever the number of threads (and so whichever thread takes which chunk).
+TEST(Tracking, NormalEquationsAreTheSameBitsForAnyNumberOfThreads) {
+  const auto frames = Frames(2, sim::AeMode::kFixed);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  auto grey = [&](const auto& f) {
+    Image<float> g(320, 240);
+    for (int y = 0; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) {
+        const Rgb8 c = f.color(x, y);
+        g(x, y) = (float(c.r) + float(c.g) + float(c.b)) / 765.f;
+      }
+    return g;
+  };
+  const DepthImage d0 = Metres(frames[0].depth), d1 = Metres(frames[1].depth);
+  const Image<float> ones(320, 240, 1.f);
+  const tracking::Live ref_frame = tracking::MakeLive(d0, grey(frames[0]), ones, cam, 3, 0.1f);
+  const tracking::Reference ref = tracking::MakeReference(ref_frame.levels[0].vertex_c, ref_frame.levels[0].normal_c,
+                                                          ref_frame.levels[0].intensity, cam, 3, Pose::Identity());
+  const tracking::Live live = tracking::MakeLive(d1, grey(frames[1]), ones, cam, 3, 0.1f);
+  const Pose T = frames[0].T_world_camera.inverse() * frames[1].T_world_camera;
+  tracking::TrackerOptions o;
+  o.kind = tracking::TrackerKind::kNrIcp;
+  const int threads = omp_get_max_threads();
+  std::vector<tracking::GnSystem> sums;
+  for (int n : {1, 2, 3, 7}) {
+    omp_set_num_threads(n);
+    for (int l = 0; l < 3; ++l)
+      sums.push_back(tracking::AccumulateCpu(ref.levels[std::size_t(l)].view(), ref.T_world_camera,
+                                             live.levels[std::size_t(l)].view(), T, o));
+  }
+  omp_set_num_threads(threads);
+  for (std::size_t k = 3; k < sums.size(); ++k)
+    EXPECT_EQ(std::memcmp(sums[k].v, sums[k % 3].v, sizeof sums[k].v), 0) << "level " << k % 3 << ", run " << k / 3;
+  EXPECT_GT(sums[0].icp_n(), 10000);  // both terms were summed over many pixels
+  EXPECT_GT(sums[0].photo_n(), 10000);
 }
 
 }  // namespace
