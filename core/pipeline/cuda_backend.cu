@@ -11,6 +11,8 @@
 
 #include "common/cuda_check.h"
 #include "common/device_buffer.h"
+#include "common/error.h"
+#include "common/parallel_copy.h"
 #include "exposure/exposure_gpu.h"
 #include "imaging/imaging_driver.h"
 #include "normalized_radiance/normalized_radiance_driver.h"
@@ -99,8 +101,18 @@ class CudaBackend final : public Backend {
   }
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
-    cuda::CopyHostToDevice(color_.data(), color.data(), color.size() * sizeof(Rgb8));
-    cuda::CopyHostToDevice(depth_raw_.data(), depth_m.data(), depth_m.size() * sizeof(float));
+    // Through pinned staging memory (the CPU's threads copy the frame there, then the GPU
+    // fetches it at full bus speed): a copy from ordinary memory went through the driver's
+    // own staging a piece at a time.
+    const std::size_t cb = color.size() * sizeof(Rgb8), db = depth_m.size() * sizeof(float);
+    if (cb > stage_.color_bytes || db > stage_.depth_bytes)
+      throw Error("the frame is larger than the camera the GPU pipeline was set up for");
+    HDRF_CUDA_CHECK(cudaEventSynchronize(stage_.sent));  // the last frame has left the staging memory
+    ParallelCopy(stage_.color, color.data(), cb);
+    ParallelCopy(stage_.depth, depth_m.data(), db);
+    HDRF_CUDA_CHECK(cudaMemcpyAsync(color_.data(), stage_.color, cb, cudaMemcpyHostToDevice, 0));
+    HDRF_CUDA_CHECK(cudaMemcpyAsync(depth_raw_.data(), stage_.depth, db, cudaMemcpyHostToDevice, 0));
+    HDRF_CUDA_CHECK(cudaEventRecord(stage_.sent, 0));
     radiometry::ConvertFrameOnGpu(color_.view(), inverse_.data(), pcf_.data(), radiance_.view(), conf_.view(),
                                   maxconf_.view());
     if (o_.depth.bilateral) imaging::BilateralFilterOnGpu(depth_raw_.view(), bilateral_, depth_.view());
@@ -290,8 +302,32 @@ class CudaBackend final : public Backend {
       tracking::BuildReferenceLevelOnGpu(ref_[l - 1]->views(), ref_[l]->views());
   }
 
+  // Pinned host memory a frame goes to the GPU through; `sent` marks its copies queued.
+  struct Staging {
+    void* color = nullptr;
+    void* depth = nullptr;
+    std::size_t color_bytes = 0, depth_bytes = 0;
+    cudaEvent_t sent = nullptr;
+    explicit Staging(const PinholeCamera& c)
+        : color_bytes(std::size_t(c.width) * std::size_t(c.height) * sizeof(Rgb8)),
+          depth_bytes(std::size_t(c.width) * std::size_t(c.height) * sizeof(float)) {
+      HDRF_CUDA_CHECK(cudaMallocHost(&color, color_bytes));
+      HDRF_CUDA_CHECK(cudaMallocHost(&depth, depth_bytes));
+      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&sent, cudaEventDisableTiming));
+      HDRF_CUDA_CHECK(cudaEventRecord(sent, 0));
+    }
+    ~Staging() {
+      cudaEventDestroy(sent);
+      cudaFreeHost(depth);
+      cudaFreeHost(color);
+    }
+    Staging(const Staging&) = delete;
+    Staging& operator=(const Staging&) = delete;
+  };
+
   const PipelineOptions o_;
   PinholeCamera cam_;
+  Staging stage_{cam_};
   imaging::BilateralTables bilateral_;
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
