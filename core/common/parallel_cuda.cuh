@@ -43,11 +43,10 @@ void ForEachPixel(Gpu, int w, int h, F f) {
 
 // Sums over the pixels of a w x h grid of what `f(x, y, acc)` adds to an accumulator of K
 // doubles (Acc has `double v[K]`): each thread sums its pixels, warps reduce by shuffles,
-// each block writes one partial, and the last block adds the partials in block order (the
+// each block writes one partial, and the last block adds the partials in fixed groups (the
 // same sum on every run, no atomics on the values). Sum reads the result back to the host;
-// SumOnDevice leaves it there: `gate()` (read by every block first) can skip the whole sum,
-// and one thread of the last block calls `finish(sums)` once they are complete, so that a
-// loop of sums and the steps between them runs without waiting for the host.
+// SumOnDevice leaves it in device memory (device_sums()) for a kernel queued after it, so
+// that a loop of sums and the steps between them runs without waiting for the host.
 class Reducer {
  public:
   static constexpr int kThreads = 256;
@@ -59,8 +58,8 @@ class Reducer {
 
   template <typename Acc, typename F>
   Acc Sum(int w, int h, F f);
-  template <typename Acc, typename F, typename Gate, typename Finish>
-  void SumOnDevice(int w, int h, F f, Gate gate, Finish finish, cudaStream_t stream = 0);
+  template <typename Acc, typename F>
+  void SumOnDevice(int w, int h, F f, cudaStream_t stream = 0);
   // Where SumOnDevice leaves the sums (device memory, until the next sum).
   double* device_sums() { return sums_.data(); }
 
@@ -71,18 +70,11 @@ class Reducer {
 };
 
 namespace detail {
-struct Always {
-  __device__ bool operator()() const { return true; }
-};
-struct NoFinish {
-  __device__ void operator()(const double*) const {}
-};
-template <typename Acc, typename F, typename Gate, typename Finish>
+template <typename Acc, typename F>
 __global__ void __launch_bounds__(Reducer::kThreads)
-    SumKernel(int w, int h, F f, Gate gate, Finish finish, double* partial, unsigned* done, double* out) {
+    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   constexpr int kThreads = Reducer::kThreads;
-  if (!gate()) return;  // the same answer in every block: none counts itself done
   Acc acc;
   const int n = w * h;
   for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) f(i % w, i / w, acc);
@@ -124,11 +116,7 @@ __global__ void __launch_bounds__(Reducer::kThreads)
     for (int grp = 0; grp < G; ++grp) s += group_sum[grp][threadIdx.x];
     out[threadIdx.x] = s;
   }
-  __syncthreads();
-  if (threadIdx.x == 0) {
-    *done = 0;  // ready for the next reduction
-    finish(static_cast<const double*>(out));
-  }
+  if (threadIdx.x == 0) *done = 0;  // ready for the next reduction
 }
 }  // namespace detail
 
@@ -143,7 +131,7 @@ template <typename Acc, typename F>
 Acc Reducer::Sum(int w, int h, F f) {
   constexpr int K = sizeof(Acc::v) / sizeof(double);
   const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
-  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, detail::Always{}, detail::NoFinish{}, partial_.data(),
+  detail::SumKernel<Acc><<<blocks, kThreads>>>(w, h, f, partial_.data(),
                                                 done_.data(), sums_.data());
   HDRF_CUDA_CHECK_LAUNCH();
   HDRF_CUDA_CHECK(cudaMemcpyAsync(host_, sums_.data(), sizeof(double) * K, cudaMemcpyDeviceToHost, 0));
@@ -153,10 +141,10 @@ Acc Reducer::Sum(int w, int h, F f) {
   return out;
 }
 
-template <typename Acc, typename F, typename Gate, typename Finish>
-void Reducer::SumOnDevice(int w, int h, F f, Gate gate, Finish finish, cudaStream_t stream) {
+template <typename Acc, typename F>
+void Reducer::SumOnDevice(int w, int h, F f, cudaStream_t stream) {
   const int blocks = std::max(1, std::min(kBlocks, (w * h + kThreads - 1) / kThreads));
-  detail::SumKernel<Acc><<<blocks, kThreads, 0, stream>>>(w, h, f, gate, finish, partial_.data(), done_.data(),
+  detail::SumKernel<Acc><<<blocks, kThreads, 0, stream>>>(w, h, f, partial_.data(), done_.data(),
                                                           sums_.data());
   HDRF_CUDA_CHECK_LAUNCH();
 }

@@ -1,6 +1,5 @@
 #include "tracking/tracking.h"
 
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>

@@ -157,7 +157,7 @@ cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* h
           if (use_icp) IcpTerm(rd->run.icp, x, y, acc);
           if (use_photo) PhotoTerm(rd->run.photo, x, y, acc);
         },
-        par::detail::Always{}, par::detail::NoFinish{}, body_stream);
+        body_stream);
     TakeStep<<<1, 1, 0, body_stream>>>(d, reducer.device_sums(), l, iters, go_on);
     cudaGraph_t body = nullptr;
     HDRF_CUDA_CHECK(cudaStreamEndCapture(body_stream, &body));

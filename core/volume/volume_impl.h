@@ -273,7 +273,6 @@ struct VolumeView {
     const int slot = hint.valid && bx == hint.bx && by == hint.by && bz == hint.bz ? hint.slot : Slot(bx, by, bz);
     return slot < 0 ? nullptr : &pool[long(slot) * 512 + ((z & 7) * 8 + (y & 7)) * 8 + (x & 7)];
   }
-  HDRF_HD static int CornerOffset(int k) { return (k & 1) + 8 * ((k >> 1) & 1) + 64 * (k >> 2); }
   // The short way is the CPU's: on the GPU a second path in every sample cost registers and
   // split warps (the ray cast took 1.6x as long on an H100), and the GPU's look-ups are cheap.
   HDRF_HD static bool ShortWay(bool wanted) {
@@ -285,80 +284,57 @@ struct VolumeView {
 #endif
   }
 
-  // Trilinear TSDF over the observed corners, renormalised; undefined (false) when the
-  // observed corners carry less than half of the interpolation weight. A cell inside one
-  // brick takes the short way (one look-up, fixed offsets) on the CPU unless `short_way` is
-  // off (tests); both ways add the same corners in the same order, so they give the same bits.
-  HDRF_HD bool SampleTsdf(Float3 p, float* out, const BrickHint& hint = BrickHint{}, bool short_way = true) const {
-    short_way = ShortWay(short_way);
+  // Calls visit(voxel, weight) for each present corner of the trilinear cell holding p, in
+  // corner order k = dx + 2 dy + 4 dz, with its trilinear weight. A cell inside one brick takes
+  // the short way (one look-up, fixed offsets) on the CPU unless `short_way` is off (tests);
+  // both ways visit the same corners in the same order with the same weights, so the samples
+  // built on this give the same bits either way.
+  template <typename Visit>
+  HDRF_HD void ForEachCorner(Float3 p, const BrickHint& hint, bool short_way, Visit&& visit) const {
     const Float3 g = Grid(p);
     const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
-    float acc = 0.f, wsum = 0.f;
-    const V* base = short_way ? CellInOneBrick(x, y, z, hint) : nullptr;
-    if (base) {
-      const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
+    const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
+    const bool in_one = (x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7;
+    if (ShortWay(short_way) && in_one) {
+      const V* base = CellInOneBrick(x, y, z, hint);
+      if (!base) return;  // its one brick is absent
       HDRF_UNROLL
-      for (int k = 0; k < 8; ++k) {
-        const V& v = base[CornerOffset(k)];
-        if (v.W() <= 0.f) continue;
-        const float w = wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2];
-        acc += w * v.Tsdf();
-        wsum += w;
-      }
-    } else {
-      if (short_way && !((x & 7) == 7 || (y & 7) == 7 || (z & 7) == 7)) return false;  // its one brick is absent
-      int slot[8];
-      CornerSlots(x, y, z, hint, slot);
-      for (int k = 0; k < 8; ++k) {
-        const V* v = Corner(slot, x, y, z, k);
-        if (!v || v->W() <= 0.f) continue;
-        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        acc += w * v->Tsdf();
-        wsum += w;
-      }
+      for (int k = 0; k < 8; ++k)
+        visit(base[(k & 1) + 8 * ((k >> 1) & 1) + 64 * (k >> 2)], wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2]);
+      return;
     }
+    int slot[8];
+    CornerSlots(x, y, z, hint, slot);
+    for (int k = 0; k < 8; ++k)
+      if (const V* v = Corner(slot, x, y, z, k)) visit(*v, wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2]);
+  }
+
+  // Trilinear TSDF over the observed corners, renormalised; undefined (false) when the
+  // observed corners carry less than half of the interpolation weight.
+  HDRF_HD bool SampleTsdf(Float3 p, float* out, const BrickHint& hint = BrickHint{}, bool short_way = true) const {
+    float acc = 0.f, wsum = 0.f;
+    ForEachCorner(p, hint, short_way, [&](const V& v, float w) {
+      if (v.W() <= 0.f) return;
+      acc += w * v.Tsdf();
+      wsum += w;
+    });
     if (wsum < 0.5f) return false;
     *out = acc / wsum;
     return true;
   }
 
   // Trilinear radiance and NR over the corners with radiance weight; false if none has any.
-  // The short way as SampleTsdf's.
   HDRF_HD bool SampleRadiance(Float3 p, Float3* rad, float* nr, const BrickHint& hint = BrickHint{},
                               bool short_way = true) const {
-    short_way = ShortWay(short_way);
-    const Float3 g = Grid(p);
-    const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
-    const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
     Float3 r{0, 0, 0};
     float nn = 0.f, wsum = 0.f;
-    const V* base = short_way ? CellInOneBrick(x, y, z, hint) : nullptr;
-    if (base) {
-      const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
-      HDRF_UNROLL
-      for (int k = 0; k < 8; ++k) {
-        const V& v = base[CornerOffset(k)];
-        if (v.Wr() <= 0.f) continue;
-        const float w = wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2];
-        r += v.Radiance() * w;
-        nn += v.Nr() * w;
-        wsum += w;
-      }
-    } else if (!short_way || (x & 7) == 7 || (y & 7) == 7 || (z & 7) == 7) {
-      int slot[8];
-      CornerSlots(x, y, z, hint, slot);
-      for (int k = 0; k < 8; ++k) {
-        const V* v = Corner(slot, x, y, z, k);
-        if (!v || v->Wr() <= 0.f) continue;
-        const int dx = k & 1, dy = (k >> 1) & 1, dz = k >> 2;
-        const float w = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay) * (dz ? az : 1 - az);
-        r += v->Radiance() * w;
-        nn += v->Nr() * w;
-        wsum += w;
-      }
-    }
+    ForEachCorner(p, hint, short_way, [&](const V& v, float w) {
+      if (v.Wr() <= 0.f) return;
+      r += v.Radiance() * w;
+      nn += v.Nr() * w;
+      wsum += w;
+    });
     if (wsum < 1e-3f) return false;
     *rad = r / wsum;
     *nr = nn / wsum;

@@ -211,7 +211,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
         EXPECT_EQ(ga.v[32], gb.v[32]);
         EXPECT_LE(worst / scale, 1e-9);
       }
-      // The iterations on the device (each step in the last block of its sum) against the
+      // The iterations on the device (a loop node per level: a sum, then a one-thread step) against the
       // same steps taken on the host over the GPU's sums, and against the CPU's run; from a
       // start 1 cm and half a degree off, with the motion prior at the tracked pose (it ends within
       // half of that of the tracked pose: this short sequence leaves the levels few iterations).

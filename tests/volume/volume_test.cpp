@@ -403,53 +403,25 @@ namespace {
 // truncation (capped at 1), weighted by |n.v|; radiance only near the surface, above tau0
 // and with its confidence as weight; behind the truncation band nothing.
 // The whole voxel decoded, updated and encoded again (the update as it was before voxels in
-// free space kept their radiance's bits): the reference the stored voxels must equal.
+// free space kept their radiance's bits): the update of the decoded values as full floats,
+// every field then encoded into V. The reference the stored voxels must equal.
 template <typename V>
 int IntegrateVoxelWhole(const volume::IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
-  using namespace volume;
-  const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
-  const float vs = a.voxel_m, trunc = a.trunc_m;
-  const Float3 pw{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs, (float(bz * 8 + lz) + 0.5f) * vs};
-  const Float3 pc = a.T_camera_world.Apply(pw);
-  if (pc.z <= 0.05f) return 0;
-  const Float2 px = a.cam.Project(pc);
-  const int u = RoundToInt(px.x), v = RoundToInt(px.y);
-  if (u < 0 || v < 0 || u >= a.cam.width || v >= a.cam.height) return 0;
-  const float zd = a.depth(u, v);
-  if (!(zd > 0.f)) return 0;
-  const float sdf = zd - pc.z;
-  if (sdf < -trunc) return 0;
-  const float f = sdf / trunc < 1.f ? sdf / trunc : 1.f;
-  const Float3 ray = Normalized(pc);
-  const Float3 nrm = a.normals(u, v);
-  const float cosv = fabsf(Dot(nrm, ray));
-  const float wf = Length(nrm) > 0.f ? (cosv > 0.05f ? cosv : 0.05f) : 0.05f;
-  Voxel vx = stored.Decode();
-  vx.tsdf = (vx.w * vx.tsdf + wf * f) / (vx.w + wf);
-  vx.w = vx.w + wf < a.max_weight ? vx.w + wf : a.max_weight;
-  int done = 1;
-  if (fabsf(sdf) < trunc && a.radiance.data && a.max_confidence(u, v) > a.tau0 && cosv >= a.cos_tau1) {
-    const float wr = a.confidence(u, v);
-    if (wr > 0.f) {
-      const Float3 live = a.radiance(u, v) * a.radiance_scale;
-      vx.radiance = (vx.radiance * vx.wr + live * wr) / (vx.wr + wr);
-      if constexpr (V::kStoresNr) vx.nr = (vx.nr * vx.wr + a.nr(u, v) * wr) / (vx.wr + wr);
-      vx.wr = vx.wr + wr < a.max_radiance_weight ? vx.wr + wr : a.max_radiance_weight;
-      done |= 2;
-    }
-  }
-  stored.Store(vx);
+  volume::FullVoxel whole{stored.Decode()};
+  const int done = volume::IntegrateVoxel(a, bx, by, bz, i, whole);
+  if (done) stored.Store(whole.v);
   return done;
 }
 
 // Integration stores only the distance where the radiance does not change: every voxel of
-// every brick a scan's frames touch, in every encoding, ends with exactly the bytes the whole
-// decode-update-encode gives, frame after frame.
+// every brick a scan's frames touch, in each encoded form (full voxels store their floats
+// whole either way), ends with exactly the bytes the whole decode-update-encode gives, frame
+// after frame.
 TEST(IntegrateVoxel, DistanceOnlyUpdatesKeepTheWholeUpdatesBytes) {
   const auto frames = Frames(8, sim::AeMode::kFlicker);
   const PinholeCamera cam = sim::SimCamera(320, 240);
   const Pose T0inv = frames[0].T_world_camera.inverse();
-  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+  for (const auto enc : {volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
     volume::VolumeOptions vo;
     vo.encoding = enc;
     volume::Volume vol(vo);
