@@ -43,10 +43,16 @@
 #include <QVBoxLayout>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <omp.h>
+#include <unistd.h>
 
 #include "common/cuda_runtime.h"
 #include "common/error.h"
+#include "gui/display_pacer.h"
 #include "gui/exposure_plot.h"
 #include "gui/tone_panel.h"
 #include "gui/image_view.h"
@@ -57,6 +63,35 @@
 #include "tonemap/display.h"
 
 namespace hdrf::gui {
+
+namespace {
+// This thread's CPU time, milliseconds.
+double ThreadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
+}
+// CPU seconds of this process's threads so far, summed by thread name (Linux; empty elsewhere).
+QJsonObject CpuSecondsByThread() {
+  QJsonObject out;
+  const long tick = sysconf(_SC_CLK_TCK);
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc/self/task", ec)) {
+    std::ifstream comm(e.path() / "comm"), stat(e.path() / "stat");
+    std::string name, line;
+    if (!std::getline(comm, name) || !std::getline(stat, line)) continue;
+    // Fields after the name's closing parenthesis: state is the 3rd, utime the 14th, stime the 15th.
+    std::istringstream in(line.substr(line.rfind(')') + 2));
+    std::string field;
+    double ticks = 0;
+    for (int i = 3; i <= 15 && in >> field; ++i)
+      if (i >= 14) ticks += std::stod(field);
+    const QString key = QString::fromStdString(name);
+    out[key] = out.value(key).toDouble() + ticks / double(tick);
+  }
+  return out;
+}
+}  // namespace
 
 namespace {
 
@@ -75,26 +110,30 @@ QScrollArea* Scrolled(QWidget* w) {
 const char* kSynthRoom = "synthetic:scene=room,frames=300,ae=flicker";
 const char* kSynthDesk = "synthetic:scene=desk,frames=300,ae=smooth";
 
+// The views' pictures are 32-bit RGB, the format Qt paints without converting it first.
 QImage FromColor(const ColorImage& c) {
-  QImage img(c.width(), c.height(), QImage::Format_RGB888);
-  for (int y = 0; y < c.height(); ++y) std::memcpy(img.scanLine(y), &c(0, y), std::size_t(c.width()) * 3);
+  QImage img(c.width(), c.height(), QImage::Format_RGB32);
+  for (int y = 0; y < c.height(); ++y) {
+    auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
+    for (int x = 0; x < c.width(); ++x) row[x] = qRgb(c(x, y).r, c(x, y).g, c(x, y).b);
+  }
   return img;
 }
 
 // A scalar image to grey over [lo, hi]; `valid(v)` false draws dark blue (no data).
 template <typename F>
 QImage Grey(const Image<float>& im, float lo, float hi, F valid) {
-  QImage img(im.width(), im.height(), QImage::Format_RGB888);
+  QImage img(im.width(), im.height(), QImage::Format_RGB32);
   for (int y = 0; y < im.height(); ++y) {
-    std::uint8_t* row = img.scanLine(y);
+    auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
     for (int x = 0; x < im.width(); ++x) {
       const float v = im(x, y);
       if (!valid(v)) {
-        row[3 * x] = 0, row[3 * x + 1] = 0, row[3 * x + 2] = 40;
+        row[x] = qRgb(0, 0, 40);
         continue;
       }
       const int g = int(std::lround(255.f * std::clamp((v - lo) / (hi - lo), 0.f, 1.f)));
-      row[3 * x] = row[3 * x + 1] = row[3 * x + 2] = std::uint8_t(g);
+      row[x] = qRgb(g, g, g);
     }
   }
   return img;
@@ -109,6 +148,7 @@ QString Rad(Float3 r) {
 MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(parent), opts_(o) {
   setWindowTitle(tr("HDRFusion Studio"));
   setObjectName("HDRFusionStudio");
+  window_threads_ = omp_get_max_threads();
   tone_ = std::make_unique<ToneMapper>();
   BuildViews();
   BuildControls();
@@ -132,6 +172,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   }
   // The scan thread.
   worker_ = new ScanWorker;
+  worker_->SetFullDetailWhileScanning(full_detail_->isChecked());
   worker_->moveToThread(&thread_);
   connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
   connect(this, &MainWindow::configure, worker_, &ScanWorker::Configure);
@@ -153,6 +194,11 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   });
   connect(worker_, &ScanWorker::failed, this, &MainWindow::OnFailed);
   connect(worker_, &ScanWorker::stateChanged, this, [this](bool running, const QString& msg) {
+    scanning_ = running;
+    pacer_.Restart();  // the frame the scan stopped at (or its first) at once
+    // While scanning the window tone maps on its own thread alone: its OpenMP threads would
+    // only contend with the scan's for the cores (and the pacer measures this thread).
+    omp_set_num_threads(running ? 1 : window_threads_);
     statusBar()->showMessage(msg);
     start_->setEnabled(!running);
     pause_->setEnabled(running);
@@ -205,7 +251,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   ConnectSensors();
   thread_.start();
   render_timer_ = new QTimer(this);
-  connect(render_timer_, &QTimer::timeout, this, &MainWindow::Render);
+  connect(render_timer_, &QTimer::timeout, this, [this] { Render(); });
   render_timer_->start(40);
   ApplyEngineSettings();
   if (!o.project.isEmpty()) OpenProject(o.project);
@@ -585,6 +631,18 @@ void MainWindow::BuildMenus() {
   for (auto it = docks_.begin(); it != docks_.end(); ++it) view->addAction(it.value()->toggleViewAction());
   view->addSeparator();
   view->addAction(tr("Reset 3-D view"), this, [this] { view3d_->ResetView(); });
+  // The 3-D view's surface while scanning: a coarse preview (the default) or every voxel.
+  QAction* full_detail = full_detail_ = view->addAction(tr("Full surface detail while scanning"));
+  full_detail->setObjectName("action_full_detail");
+  full_detail->setCheckable(true);
+  full_detail->setToolTip(tr("Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, "
+                             "a quarter of the triangles), which leaves more of the processor to the scan; the whole "
+                             "surface follows when the scan stops"));
+  full_detail->setChecked(QSettings().value("view/full_detail_while_scanning", false).toBool());
+  connect(full_detail, &QAction::toggled, this, [this](bool on) {
+    worker_->SetFullDetailWhileScanning(on);
+    QSettings().setValue("view/full_detail_while_scanning", on);
+  });
   view->addAction(tr("Restore default layout"), this, [this] {
     restoreState(default_state_);
     for (QDockWidget* d : docks_) d->show();
@@ -742,16 +800,28 @@ void MainWindow::UpdateMesh() {
   mesh_time_ms_ = now;
   ++mesh_updates_;
   if (scan_first_ms_ >= 0 && now <= scan_last_ms_ + 100) ++mesh_updates_in_scan_;
+  const double t0 = ThreadCpuMs();
   view3d_->SetMesh(*mesh_shown_, tone_->MapColours(mesh_shown_->radiance));
+  mesh_handover_ms_ += ThreadCpuMs() - t0;
 }
 
-void MainWindow::Render() {
+void MainWindow::Render(bool now) {
   TellShownViews();
   UpdateMesh();
   const auto s = latest_;
   if (!s || s == shown_) return;
+  // While a scan runs the views refresh at the pacer's rate (the scan keeps the cores).
+  const qint64 wall = QDateTime::currentMSecsSinceEpoch();
+  if (!now && !s->preview && scanning_ && !pacer_.Due(wall)) return;
   shown_ = s;
   ++frames_shown_;
+  const double t0 = ThreadCpuMs();
+  if (scanning_) pacer_.Refreshed(wall, t0);
+  RenderSnapshot(s);
+  views_ms_ += ThreadCpuMs() - t0;
+}
+
+void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
   if (s->live && !camera_lost_) sensor_panel_->ShowStatus(*s->live);
   if (s->preview) {
     RenderPreview(s);
@@ -800,14 +870,15 @@ void MainWindow::Render() {
   }
   if (visible("model_normals") && !im.render.normal.empty()) {
     const auto& n = im.render.normal;
-    QImage img(n.width(), n.height(), QImage::Format_RGB888);
-    for (int y = 0; y < n.height(); ++y)
+    QImage img(n.width(), n.height(), QImage::Format_RGB32);
+    for (int y = 0; y < n.height(); ++y) {
+      auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
       for (int x = 0; x < n.width(); ++x) {
         const Float3 v = n(x, y);
         const bool hit = Length(v) > 0;
-        img.setPixel(x, y, hit ? qRgb(int(127.5f * (v.x + 1)), int(127.5f * (v.y + 1)), int(127.5f * (v.z + 1)))
-                               : qRgb(0, 0, 40));
+        row[x] = hit ? qRgb(int(127.5f * (v.x + 1)), int(127.5f * (v.y + 1)), int(127.5f * (v.z + 1))) : qRgb(0, 0, 40);
       }
+    }
     views_["model_normals"]->SetImage(img, [s](int x, int y) {
       const Float3 v = s->images.render.normal(x, y);
       const float d = s->images.render.depth(x, y);
@@ -905,7 +976,7 @@ void MainWindow::Render() {
 }
 
 bool MainWindow::SaveScreenshot(const QString& path) {
-  Render();
+  Render(/*now=*/true);
   QApplication::processEvents();
   const QImage shot = grab().toImage();
   bool ok = shot.save(path, "PNG");
@@ -945,6 +1016,16 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   report["mesh_updates"] = mesh_updates_;
   report["mesh_updates_per_s"] = scan_s > 0 ? double(mesh_updates_in_scan_) / scan_s : 0.0;
   report["frames_shown"] = frames_shown_;
+  // Where the window's time went, and every thread's CPU (the scan's, the window's, the
+  // mesher's, software OpenGL's).
+  QJsonObject display;
+  display["views_cpu_ms"] = views_ms_;
+  display["views_interval_ms"] = pacer_.interval_ms();
+  display["mesh_handover_cpu_ms"] = mesh_handover_ms_;
+  display["redraws"] = view3d_->redraws();
+  display["redraw_ms"] = view3d_->redraw_ms();
+  report["display"] = display;
+  report["cpu_seconds_by_thread"] = CpuSecondsByThread();
   report["health"] = health_->text();
   report["error"] = error_->text();
   report["window"] = QJsonArray{shot.width(), shot.height()};

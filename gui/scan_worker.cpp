@@ -30,11 +30,11 @@ std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) 
 
 void MeshWorker::Reset(const volume::VolumeOptions& o) { mesher_ = std::make_unique<mesh::IncrementalMesher>(o); }
 
-void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation) {
+void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step) {
   std::shared_ptr<const mesh::Mesh> m;
   if (mesher_) {
-    mesher_->Apply(*changed);
-    m = std::make_shared<const mesh::Mesh>(mesher_->Assemble());
+    mesher_->Apply(*changed, step);
+    m = std::make_shared<const mesh::Mesh>(mesher_->Assemble(step));
   }
   busy = false;
   if (m) emit meshReady(std::move(m), last, generation);
@@ -94,8 +94,11 @@ void ScanWorker::RequestMesh(bool last) {
   mesher_->busy = true;
   mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
   mesh_frame_ = session_->frames() - 1;
+  // The whole surface at a stop (last), else the detail chosen for a running scan.
+  const int step = last || full_detail_ ? 1 : 2;
   QMetaObject::invokeMethod(
-      mesher_, [m = mesher_, changed, last, g = mesh_generation_] { m->Apply(changed, last, g); }, Qt::QueuedConnection);
+      mesher_, [m = mesher_, changed, last, g = mesh_generation_, step] { m->Apply(changed, last, g, step); },
+      Qt::QueuedConnection);
 }
 
 void ScanWorker::OnMesh(std::shared_ptr<const mesh::Mesh> m) { mesh_ = std::move(m); }

@@ -39,7 +39,7 @@ struct ScanSettings {
   // Refresh of the 3-D view's mesh, on the mesher's own thread from the bricks changed since
   // the last refresh: at most every this many frames, no more often than mesh_min_interval_ms,
   // and never while the last refresh is still being meshed.
-  int mesh_every_frames = 5;
+  int mesh_every_frames = 1;
   int mesh_min_interval_ms = 400;
   // The stage images a snapshot carries (only those of views on screen, ScanWorker::
   // SetShownViews) are copied at most this often (the display's rate; 0: every frame). The
@@ -82,7 +82,8 @@ class MeshWorker : public QObject {
   void Reset(const volume::VolumeOptions& o);
   // `generation`: the model the bricks came from (ScanWorker counts them), sent back with the
   // surface so that one meshed from a model since dropped is not shown.
-  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation);
+  // `step`: the surface's detail (mesh::IncrementalMesher: 1 every voxel, 2 a coarse preview).
+  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step);
  signals:
   void meshReady(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last, int generation);
 
@@ -128,6 +129,11 @@ class ScanWorker : public QObject {
   // The stage images the window shows now (any thread): snapshots carry only those.
   void SetShownViews(const pipeline::ViewSet& v);
   pipeline::ViewSet ShownViews() const;
+  // The surface's detail while a scan runs (any thread): false, a coarse preview from every
+  // other voxel (a quarter of the triangles: a redraw the software OpenGL of a machine without
+  // a GPU can afford twice a second); true, every voxel. When the scan stops, pauses or
+  // finishes the whole surface follows either way.
+  void SetFullDetailWhileScanning(bool full) { full_detail_ = full; }
   // Clears a previous cancel: call (from any thread) before queueing ExportAsset, so that a
   // cancel pressed before the worker starts the export still counts.
   void ArmExport() { cancel_export_ = false; }
@@ -229,6 +235,7 @@ class ScanWorker : public QObject {
   QThread* mesh_thread_ = nullptr;
   MeshWorker* mesher_ = nullptr;    // lives on mesh_thread_
   std::atomic<unsigned> shown_views_{0x1f};  // ViewSet as bits
+  std::atomic<bool> full_detail_{false};
   bool running_ = false;
   std::atomic<bool> cancel_export_{false};
 };

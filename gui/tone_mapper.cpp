@@ -52,12 +52,12 @@ QImage ToneMapper::Map(const RadianceImage& r, ToneView v, double seconds) {
   Image<Float3> lin;
   For(v).Map(r, lin, tonemap::FrameTime{seconds});
   ocio_->Apply(lin);
-  QImage img(r.width(), r.height(), QImage::Format_RGB888);
+  QImage img(r.width(), r.height(), QImage::Format_RGB32);  // painted without a conversion
   for (int y = 0; y < r.height(); ++y) {
-    std::uint8_t* row = img.scanLine(y);
+    auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
     for (int x = 0; x < r.width(); ++x) {
       const Float3 c = lin(x, y);
-      row[3 * x] = To8(c.x), row[3 * x + 1] = To8(c.y), row[3 * x + 2] = To8(c.z);
+      row[x] = qRgb(To8(c.x), To8(c.y), To8(c.z));
     }
   }
   return img;

@@ -1,5 +1,7 @@
 #include "gui/vtk_view.h"
 
+#include <chrono>
+
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
@@ -29,8 +31,11 @@
 #include <QDateTime>
 #include <QLabel>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
+#include <QPainter>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QWheelEvent>
@@ -63,29 +68,34 @@ void VtkView::SetDefaultSurfaceFormat() {
   QSurfaceFormat::setDefaultFormat(f);
 }
 
-VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<Impl>()) {
+VtkView::VtkView(QWidget* parent) : QWidget(parent), d_(std::make_unique<Impl>()) {
   setMinimumSize(200, 150);
   setFocusPolicy(Qt::StrongFocus);
+  setAttribute(Qt::WA_OpaquePaintEvent);  // paintEvent covers every pixel
   d_->window->SetReadyForRendering(false);
   d_->window->SetMultiSamples(0);  // software GL: no multisampling
   d_->window->AddRenderer(d_->renderer);
   d_->renderer->SetBackground(0.12, 0.12, 0.14);
   d_->interactor->SetRenderWindow(d_->window);
   d_->interactor->SetInteractorStyle(d_->style);
-  // The render window asks the widget to make its context current, whether it is, and
-  // announces finished frames.
+  // The render window asks the view to make its context current, whether it is, and
+  // announces finished frames (the interactor draws on its own: that frame is read back).
   d_->make_current->SetClientData(this);
   d_->make_current->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    auto* w = static_cast<VtkView*>(self);
-    if (w->context() && QOpenGLContext::currentContext() != w->context()) w->makeCurrent();
+    static_cast<VtkView*>(self)->MakeCurrent();
   });
   d_->is_current->SetClientData(this);
   d_->is_current->SetCallback([](vtkObject*, unsigned long, void* self, void* call) {
     auto* w = static_cast<VtkView*>(self);
-    *static_cast<bool*>(call) = w->context() && QOpenGLContext::currentContext() == w->context();
+    *static_cast<bool*>(call) = w->context_ && QOpenGLContext::currentContext() == w->context_.get();
   });
   d_->frame->SetClientData(this);
-  d_->frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) { static_cast<VtkView*>(self)->update(); });
+  d_->frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    auto* w = static_cast<VtkView*>(self);
+    if (w->drawing_) return;
+    w->read_pending_ = true;
+    w->update();
+  });
   d_->window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d_->make_current);
   d_->window->AddObserver(vtkCommand::WindowIsCurrentEvent, d_->is_current);
   d_->window->AddObserver(vtkCommand::WindowFrameEvent, d_->frame);
@@ -233,11 +243,41 @@ void VtkView::ChangedByScan() {
 }
 
 VtkView::~VtkView() {
-  // Disconnect first: the base destructor must not call back into this half-destroyed view.
-  if (context()) disconnect(context(), nullptr, this, nullptr);
-  makeCurrent();
-  Cleanup();
-  doneCurrent();
+  if (context_ && MakeCurrent()) {
+    Cleanup();
+    fbo_.reset();
+    context_->doneCurrent();
+  }
+}
+
+bool VtkView::MakeCurrent() {
+  if (!context_ && gl_error_.isEmpty()) {
+    // The default format (SetDefaultSurfaceFormat): OpenGL 3.2 core, as VTK needs.
+    auto ctx = std::make_unique<QOpenGLContext>();
+    auto surface = std::make_unique<QOffscreenSurface>();
+    if (!ctx->create()) {
+      gl_error_ = tr("The 3-D view needs OpenGL 3.2, which this display does not offer");
+      return false;
+    }
+    surface->setFormat(ctx->format());
+    surface->create();
+    if (!surface->isValid() || !ctx->makeCurrent(surface.get())) {
+      gl_error_ = tr("The 3-D view cannot draw: no offscreen OpenGL surface on this display");
+      return false;
+    }
+    context_ = std::move(ctx);
+    surface_ = std::move(surface);
+    d_->window->SetOwnContext(false);
+    d_->window->SetFrameBlitModeToNoBlit();
+    d_->window->SetReadyForRendering(true);
+    d_->window->OpenGLInitContext();
+    d_->interactor->Initialize();
+    resizeEvent(nullptr);
+    return true;
+  }
+  if (!context_) return false;
+  if (QOpenGLContext::currentContext() != context_.get() && !context_->makeCurrent(surface_.get())) return false;
+  return true;
 }
 
 void VtkView::Cleanup() {
@@ -247,50 +287,63 @@ void VtkView::Cleanup() {
   }
 }
 
-void VtkView::initializeGL() {
-  d_->window->SetOwnContext(false);
-  d_->window->SetFrameBlitModeToNoBlit();
-  d_->window->SetReadyForRendering(true);
-  d_->window->OpenGLInitContext();
-  d_->interactor->Initialize();
+void VtkView::resizeEvent(QResizeEvent*) {
+  if (!context_) return;
   const qreal r = devicePixelRatioF();
-  d_->window->SetSize(int(width() * r), int(height() * r));
-  d_->interactor->UpdateSize(int(width() * r), int(height() * r));
-  // The context is recreated when the widget is re-parented (floated, docked again).
-  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] {
-    makeCurrent();
-    Cleanup();
-    doneCurrent();
-  });
+  const int w = std::max(1, int(width() * r)), h = std::max(1, int(height() * r));
+  d_->window->SetSize(w, h);
+  d_->interactor->UpdateSize(w, h);
   dirty_ = true;
 }
 
-void VtkView::resizeGL(int w, int h) {
-  const qreal r = devicePixelRatioF();
-  d_->window->SetSize(int(w * r), int(h * r));
-  d_->interactor->UpdateSize(int(w * r), int(h * r));
-  dirty_ = true;
+void VtkView::Draw() {
+  if (!MakeCurrent()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  drawing_ = true;
+  d_->window->Render();
+  drawing_ = false;
+  ReadBack();
+  redraw_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++redraws_;
+  last_redraw_ms_ = QDateTime::currentMSecsSinceEpoch();
+  dirty_ = false;
 }
 
-void VtkView::paintGL() {
-  if (!d_->window->GetReadyForRendering()) return;
-  if (dirty_) {
-    dirty_ = false;
-    d_->window->Render();
-    ++redraws_;
-    last_redraw_ms_ = QDateTime::currentMSecsSinceEpoch();
-  }
-  // Copy VTK's last frame into the widget's framebuffer, then make it opaque.
-  vtkOpenGLState* st = d_->window->GetState();
-  st->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+void VtkView::ReadBack() {
+  if (!MakeCurrent()) return;
   const int* s = d_->window->GetSize();
-  const qreal r = devicePixelRatioF();
-  d_->window->BlitDisplayFramebuffer(0, 0, 0, s[0], s[1], 0, 0, int(width() * r), int(height() * r),
-                                     GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  if (!fbo_ || fbo_->width() != s[0] || fbo_->height() != s[1])
+    fbo_ = std::make_unique<QOpenGLFramebufferObject>(s[0], s[1]);
+  // VTK's last frame into the view's framebuffer, made opaque, then to host memory.
+  vtkOpenGLState* st = d_->window->GetState();
+  st->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_->handle());
+  d_->window->BlitDisplayFramebuffer(0, 0, 0, s[0], s[1], 0, 0, s[0], s[1], GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  st->vtkglBindFramebuffer(GL_FRAMEBUFFER, fbo_->handle());
   st->vtkglColorMask(false, false, false, true);
   st->vtkglClearColor(0, 0, 0, 1);
   st->vtkglClear(GL_COLOR_BUFFER_BIT);
   st->vtkglColorMask(true, true, true, true);
+  image_ = fbo_->toImage(false);
+  st->vtkglBindFramebuffer(GL_FRAMEBUFFER, 0);
+  image_.setDevicePixelRatio(devicePixelRatioF());
+  read_pending_ = false;
+}
+
+void VtkView::paintEvent(QPaintEvent*) {
+  if (dirty_) Draw();
+  else if (read_pending_) ReadBack();
+  QPainter p(this);
+  if (!gl_error_.isEmpty()) {
+    p.fillRect(rect(), QColor(30, 30, 36));
+    p.setPen(QColor(230, 200, 120));
+    p.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap, gl_error_);
+    return;
+  }
+  if (image_.isNull()) {
+    p.fillRect(rect(), QColor(31, 31, 36));
+    return;
+  }
+  p.drawImage(QPoint(0, 0), image_);
 }
 
 void VtkView::SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours) {
@@ -409,8 +462,10 @@ void VtkView::ResetView() {
 }
 
 QImage VtkView::Capture() {
-  dirty_ = true;
-  return grabFramebuffer();
+  Draw();
+  QImage shot = image_;
+  shot.setDevicePixelRatio(1);
+  return shot;
 }
 
 void VtkView::SetEventInfo(QMouseEvent* e) {

@@ -1,11 +1,16 @@
-// The 3-D inspection view: VTK rendering hosted in a Qt 6 QOpenGLWidget through
-// vtkGenericOpenGLRenderWindow (Debian's VTK Qt module is built for Qt 5 and is never
-// linked). Shows the growing mesh with tone-mapped HDR colour, the camera trajectory and
-// the current frustum; trackball orbit (left), pan (middle or shift+left), zoom (wheel).
+// The 3-D inspection view: VTK rendering through vtkGenericOpenGLRenderWindow in an OpenGL
+// context of the view's own on an offscreen surface (Debian's VTK Qt module is built for
+// Qt 5 and is never linked); each redraw is read back into an image the widget paints. The
+// window thus stays an ordinary raster window: an OpenGL widget in it would make Qt compose
+// the whole window with OpenGL on every repaint of any view, which on software OpenGL costs
+// more than the scan can spare. Shows the growing mesh with tone-mapped HDR colour, the
+// camera trajectory and the current frustum; trackball orbit (left), pan (middle or
+// shift+left), zoom (wheel).
 #pragma once
 
 #include <Eigen/Core>
-#include <QOpenGLWidget>
+#include <QImage>
+#include <QWidget>
 #include <array>
 #include <memory>
 #include <vector>
@@ -16,10 +21,13 @@
 #include "mesh/mesh.h"
 
 class QLabel;
+class QOffscreenSurface;
+class QOpenGLContext;
+class QOpenGLFramebufferObject;
 
 namespace hdrf::gui {
 
-class VtkView : public QOpenGLWidget {
+class VtkView : public QWidget {
   Q_OBJECT
  public:
   explicit VtkView(QWidget* parent = nullptr);
@@ -38,23 +46,28 @@ class VtkView : public QOpenGLWidget {
   // a new surface, a reset view and the mouse redraw at once).
   void SetTrajectoryRefreshMs(int ms) { trajectory_refresh_ms_ = ms; }
   int redraws() const { return redraws_; }  // scene redraws so far
-  // The last rendered frame (for tests and screenshots).
+  double redraw_ms() const { return redraw_ms_; }  // their wall time in all (software GL's threads included)
+  // The scene drawn now (for tests and screenshots).
   QImage Capture();
+  // Why the view cannot draw (no usable OpenGL 3.2), or empty.
+  QString gl_error() const { return gl_error_; }
 
   // Sets the default OpenGL surface format VTK needs; call before QApplication exists.
   static void SetDefaultSurfaceFormat();
 
  protected:
-  void initializeGL() override;
-  void resizeGL(int w, int h) override;
-  void paintGL() override;
+  void paintEvent(QPaintEvent* e) override;
+  void resizeEvent(QResizeEvent* e) override;
   void mousePressEvent(QMouseEvent* e) override;
   void mouseReleaseEvent(QMouseEvent* e) override;
   void mouseMoveEvent(QMouseEvent* e) override;
   void wheelEvent(QWheelEvent* e) override;
 
  private:
+  bool MakeCurrent();  // the view's context current (created on first use); false: none
   void Cleanup();
+  void Draw();         // the scene rendered and read back into image_
+  void ReadBack();     // VTK's last frame into image_
   void ChangedByScan();  // dirty; redrawn now or when trajectory_refresh_ms_ has passed
   void SetEventInfo(QMouseEvent* e);
   void UpdateGround(const mesh::Mesh& m);
@@ -62,8 +75,16 @@ class VtkView : public QOpenGLWidget {
   static constexpr double kAxisLength = 0.5;  // m
   struct Impl;
   std::unique_ptr<Impl> d_;
+  std::unique_ptr<QOpenGLContext> context_;
+  std::unique_ptr<QOffscreenSurface> surface_;
+  std::unique_ptr<QOpenGLFramebufferObject> fbo_;
+  QImage image_;
+  QString gl_error_;
+  bool drawing_ = false;      // inside Draw (VTK's frame events are its own)
+  bool read_pending_ = false;  // VTK drew a frame (the interactor) not yet read back
   bool dirty_ = true;
-  int trajectory_refresh_ms_ = 500, redraws_ = 0;
+  int trajectory_refresh_ms_ = 1000, redraws_ = 0;
+  double redraw_ms_ = 0;
   bool redraw_pending_ = false;
   qint64 last_redraw_ms_ = 0;
   bool first_mesh_ = true;

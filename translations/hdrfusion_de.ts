@@ -1853,6 +1853,14 @@ Open it to continue or export it?</source>
         <source>The language changes when the studio starts again.</source>
         <translation>Die Sprache wechselt beim nächsten Start des Studios.</translation>
     </message>
+    <message>
+        <source>Full surface detail while scanning</source>
+        <translation>Volle Oberflächendetails beim Scannen</translation>
+    </message>
+    <message>
+        <source>Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, a quarter of the triangles), which leaves more of the processor to the scan; the whole surface follows when the scan stops</source>
+        <translation>Aus: Während ein Scan läuft, zeigt die 3-D-Ansicht eine gröbere Oberfläche (aus jedem zweiten Voxel, ein Viertel der Dreiecke), die dem Scan mehr vom Prozessor lässt; die ganze Oberfläche folgt, wenn der Scan anhält</translation>
+    </message>
 </context>
 <context>
     <name>hdrf::gui::ScanWorker</name>
@@ -2315,6 +2323,14 @@ Open it to continue or export it?</source>
     <message>
         <source>&lt;span style=&apos;color:#6b6b75&apos;&gt;&amp;#9632;&lt;/span&gt; floor grid, %1 m squares &amp;nbsp; axes: &lt;span style=&apos;color:#ff5050&apos;&gt;x&lt;/span&gt; &lt;span style=&apos;color:#50e050&apos;&gt;y&lt;/span&gt; &lt;span style=&apos;color:#6090ff&apos;&gt;up&lt;/span&gt;, %2 m&lt;br&gt;&lt;span style=&apos;color:#ffd933&apos;&gt;&amp;#9632;&lt;/span&gt; camera path &amp;nbsp; &lt;span style=&apos;color:#ff4d40&apos;&gt;&amp;#9632;&lt;/span&gt; camera now &amp;nbsp; &lt;span style=&apos;color:#73b3ff&apos;&gt;&amp;#9632;&lt;/span&gt; region the volume holds</source>
         <translation>&lt;span style=&apos;color:#6b6b75&apos;&gt;&amp;#9632;&lt;/span&gt; Bodenraster, %1-m-Quadrate &amp;nbsp; Achsen: &lt;span style=&apos;color:#ff5050&apos;&gt;x&lt;/span&gt; &lt;span style=&apos;color:#50e050&apos;&gt;y&lt;/span&gt; &lt;span style=&apos;color:#6090ff&apos;&gt;oben&lt;/span&gt;, %2 m&lt;br&gt;&lt;span style=&apos;color:#ffd933&apos;&gt;&amp;#9632;&lt;/span&gt; Kamerapfad &amp;nbsp; &lt;span style=&apos;color:#ff4d40&apos;&gt;&amp;#9632;&lt;/span&gt; Kamera jetzt &amp;nbsp; &lt;span style=&apos;color:#73b3ff&apos;&gt;&amp;#9632;&lt;/span&gt; vom Volumen erfasster Bereich</translation>
+    </message>
+    <message>
+        <source>The 3-D view needs OpenGL 3.2, which this display does not offer</source>
+        <translation>Die 3-D-Ansicht braucht OpenGL 3.2, das diese Anzeige nicht bietet</translation>
+    </message>
+    <message>
+        <source>The 3-D view cannot draw: no offscreen OpenGL surface on this display</source>
+        <translation>Die 3-D-Ansicht kann nicht zeichnen: keine OpenGL-Fläche außerhalb des Bildschirms auf dieser Anzeige</translation>
     </message>
 </context>
 <context>

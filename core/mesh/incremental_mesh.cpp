@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
+#include "common/error.h"
 #include "mesh/mesh_assemble.h"
 #include "mesh/mesh_impl.h"
 
@@ -11,61 +13,79 @@ namespace hdrf::mesh {
 
 namespace {
 
-// The surface of one brick's 512 cubes, as Extract (mesh.cpp) builds the whole model's: the
-// same cube triangles, vertices and orientation, with the vertices this brick's cubes use.
+// The surface of one brick's cubes at a step (512 cubes at step 1, 64 at step 2), as Extract
+// (mesh.cpp) builds the whole model's at step 1: the same cube triangles, vertices and
+// orientation, with the vertices this brick's cubes use.
 template <typename V>
-Mesh MeshBrick(const volume::VolumeView<V>& view, const std::array<int, 3>& b) {
+Mesh MeshBrick(const volume::VolumeView<V>& view, const std::array<int, 3>& b, int step) {
   std::vector<std::array<std::uint64_t, 3>> tris;
   std::uint64_t t[kMaxCubeTriangles][3];
-  for (int i = 0; i < 512; ++i) {
-    const int nt = CubeTriangles(view, b[0] * 8 + (i & 7), b[1] * 8 + ((i >> 3) & 7), b[2] * 8 + (i >> 6), t);
-    for (int k = 0; k < nt; ++k) tris.push_back({t[k][0], t[k][1], t[k][2]});
-  }
+  const int n = volume::kBrick / step;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int nt = CubeTriangles(view, b[0] * volume::kBrick + i * step, b[1] * volume::kBrick + j * step,
+                                     b[2] * volume::kBrick + k * step, t, step);
+        for (int q = 0; q < nt; ++q) tris.push_back({t[q][0], t[q][1], t[q][2]});
+      }
   if (tris.empty()) return Mesh{};
-  return MeshFromEdgeTriangles(view, tris, /*threads=*/false);
+  return MeshFromEdgeTriangles(view, tris, /*threads=*/false, step);
+}
+
+void CheckStep(int step) {
+  if (step < 1 || step > IncrementalMesher::kSteps)
+    throw Error("incremental mesher: step " + std::to_string(step) + " (1 or 2)");
 }
 
 }  // namespace
 
 IncrementalMesher::IncrementalMesher(const volume::VolumeOptions& o) : mirror_(o) {}
 
-std::size_t IncrementalMesher::Apply(const volume::BrickSet& changed) {
+const IncrementalMesher::Level& IncrementalMesher::level(int step) const {
+  CheckStep(step);
+  return levels_[std::size_t(step - 1)];
+}
+
+std::size_t IncrementalMesher::Apply(const volume::BrickSet& changed, int step) {
+  CheckStep(step);
   mirror_.Store(changed);
-  // The changed bricks and their neighbours that the mirror holds, each once.
-  std::vector<std::uint64_t> todo;
-  todo.reserve(changed.size() * 4);
+  // The changed bricks and their neighbours that the mirror holds: stale at every step.
   for (const auto& c : changed.coords)
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-          if (volume::BrickInRange(x, y, z) && mirror_.BrickAllocated(x, y, z)) todo.push_back(volume::BrickKey(x, y, z));
+          if (!volume::BrickInRange(x, y, z) || !mirror_.BrickAllocated(x, y, z)) continue;
+          for (Level& l : levels_) l.stale.insert(volume::BrickKey(x, y, z));
         }
+  Level& l = levels_[std::size_t(step - 1)];
+  std::vector<std::uint64_t> todo(l.stale.begin(), l.stale.end());
+  l.stale.clear();
   std::sort(todo.begin(), todo.end());
-  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   std::vector<Mesh> meshed(todo.size());
   volume::VisitEncoding(mirror_.options().encoding, [&](auto tag) {
     const volume::VolumeView<decltype(tag)> view = mirror_.view<decltype(tag)>();
     for (std::size_t i = 0; i < todo.size(); ++i) {
       std::array<int, 3> b;
       volume::DecodeBrickKey(todo[i], &b[0], &b[1], &b[2]);
-      meshed[i] = MeshBrick(view, b);
+      meshed[i] = MeshBrick(view, b, step);
     }
   });
   for (std::size_t i = 0; i < todo.size(); ++i) {
     if (meshed[i].triangles.empty())
-      pieces_.erase(todo[i]);
+      l.pieces.erase(todo[i]);
     else
-      pieces_[todo[i]] = std::move(meshed[i]);
+      l.pieces[todo[i]] = std::move(meshed[i]);
   }
   return todo.size();
 }
 
-Mesh IncrementalMesher::Assemble() const {
+Mesh IncrementalMesher::Assemble(int step) const {
+  const auto& pieces = level(step).pieces;
   std::vector<std::uint64_t> keys;
-  keys.reserve(pieces_.size());
+  keys.reserve(pieces.size());
   std::size_t nv = 0, nt = 0;
-  for (const auto& [k, m] : pieces_) {
+  for (const auto& [k, m] : pieces) {
     keys.push_back(k);
     nv += m.position.size();
     nt += m.triangles.size();
@@ -77,7 +97,7 @@ Mesh IncrementalMesher::Assemble() const {
   out.radiance.reserve(nv);
   out.triangles.reserve(nt);
   for (const std::uint64_t k : keys) {
-    const Mesh& m = pieces_.at(k);
+    const Mesh& m = pieces.at(k);
     const auto base = std::int32_t(out.position.size());
     out.position.insert(out.position.end(), m.position.begin(), m.position.end());
     out.normal.insert(out.normal.end(), m.normal.begin(), m.normal.end());

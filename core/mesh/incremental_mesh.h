@@ -5,10 +5,18 @@
 // them). The pieces together hold exactly the triangles of ExtractMesh over the same voxels;
 // vertices on brick borders appear once per piece that uses them. For views that redraw the
 // surface while a scan goes on, off the scan's thread; exports use ExtractMesh.
+//
+// A coarser surface for a view that must redraw cheaply while the scan goes on: with step 2
+// each piece is meshed from every other voxel (cubes two voxels on a side: an eighth of the
+// cubes, about a quarter of the triangles). The pieces of each step are kept apart, and a
+// brick changed since its piece of a step was meshed is meshed again when that step is next
+// asked for (a scan previewed at step 2 and shown whole at step 1 when it stops).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "mesh/mesh.h"
 #include "volume/volume.h"
@@ -17,19 +25,26 @@ namespace hdrf::mesh {
 
 class IncrementalMesher {
  public:
+  static constexpr int kSteps = 2;  // steps 1 (every voxel) and 2
   explicit IncrementalMesher(const volume::VolumeOptions& o);
-  // Takes changed bricks in and meshes again every brick they can reach. Returns the number
-  // of bricks meshed. Bricks past the mirror's memory limit are left out (full() says so).
-  std::size_t Apply(const volume::BrickSet& changed);
-  // All pieces as one mesh (in brick key order).
-  Mesh Assemble() const;
+  // Takes changed bricks in, and meshes at `step` every brick a change has reached since that
+  // step's pieces were last brought up to date. Returns the number of bricks meshed. Bricks
+  // past the mirror's memory limit are left out (full() says so).
+  std::size_t Apply(const volume::BrickSet& changed, int step = 1);
+  // All pieces of a step as one mesh (in brick key order).
+  Mesh Assemble(int step = 1) const;
   std::size_t bricks() const { return mirror_.allocated_bricks(); }
-  std::size_t pieces() const { return pieces_.size(); }
+  std::size_t pieces(int step = 1) const { return level(step).pieces.size(); }
   bool full() const { return mirror_.full(); }
 
  private:
+  struct Level {
+    std::unordered_map<std::uint64_t, Mesh> pieces;  // brick key -> its cubes' surface
+    std::unordered_set<std::uint64_t> stale;         // bricks a change reached since meshed
+  };
+  const Level& level(int step) const;
   volume::Volume mirror_;
-  std::unordered_map<std::uint64_t, Mesh> pieces_;  // brick key -> its cubes' surface
+  std::array<Level, kSteps> levels_;
 };
 
 }  // namespace hdrf::mesh

@@ -16,9 +16,10 @@ namespace hdrf::mesh {
 
 // `threads`: the vertices computed on the OpenMP threads (the whole model), or on the
 // caller's thread alone (one brick, on a thread that must not take the scan's cores).
+// `step`: the lattice the keys name (CubeTriangles).
 template <typename V>
 Mesh MeshFromEdgeTriangles(const volume::VolumeView<V>& view, const std::vector<std::array<std::uint64_t, 3>>& tris,
-                           bool threads) {
+                           bool threads, int step = 1) {
   std::vector<std::uint64_t> keys;
   keys.reserve(tris.size() * 3);
   for (const auto& tr : tris) keys.insert(keys.end(), tr.begin(), tr.end());
@@ -31,7 +32,7 @@ Mesh MeshFromEdgeTriangles(const volume::VolumeView<V>& view, const std::vector<
 #pragma omp parallel for schedule(static) if (threads)
   for (long i = 0; i < long(keys.size()); ++i)
     EdgeVertex(view, keys[std::size_t(i)], &m.position[std::size_t(i)], &m.normal[std::size_t(i)],
-               &m.radiance[std::size_t(i)]);
+               &m.radiance[std::size_t(i)], step);
   m.triangles.resize(tris.size());
   for (std::size_t i = 0; i < tris.size(); ++i) {
     std::int32_t* idx = m.triangles[i].data();

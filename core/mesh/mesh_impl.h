@@ -44,19 +44,21 @@ inline constexpr int kMaxCubeTriangles = 12;
 
 // Triangles (as edge keys, unoriented) of the cube whose lowest corner is voxel (x, y, z):
 // the cube is split into six tetrahedra around its diagonal 0-7 (corners x + 2y + 4z); only
-// cubes of eight observed voxels with both signs produce any.
+// cubes of eight observed voxels with both signs produce any. `step` > 1: a cube `step`
+// voxels on a side (x, y, z multiples of it), on the coarser lattice of every step-th voxel;
+// its edge keys name that lattice's points (EdgeVertex with the same step).
 template <typename V>
 HDRF_HD int CubeTriangles(const volume::VolumeView<V>& vol, int x, int y, int z,
-                          std::uint64_t tri[kMaxCubeTriangles][3]) {
+                          std::uint64_t tri[kMaxCubeTriangles][3], int step = 1) {
   const int tets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
   float f[8];
-  int ix[8][3];
+  int ix[8][3];  // corners on the lattice
   bool pos = false, neg = false;
   for (int k = 0; k < 8; ++k) {
-    ix[k][0] = x + (k & 1);
-    ix[k][1] = y + ((k >> 1) & 1);
-    ix[k][2] = z + (k >> 2);
-    const V* v = vol.Get(ix[k][0], ix[k][1], ix[k][2]);
+    ix[k][0] = x / step + (k & 1);
+    ix[k][1] = y / step + ((k >> 1) & 1);
+    ix[k][2] = z / step + (k >> 2);
+    const V* v = vol.Get(ix[k][0] * step, ix[k][1] * step, ix[k][2] * step);
     if (!v || v->W() <= 0.f) return 0;
     f[k] = v->Tsdf();
     if (f[k] < 0.f) neg = true;
@@ -101,10 +103,13 @@ HDRF_HD int CubeTriangles(const volume::VolumeView<V>& vol, int x, int y, int z,
 
 // The vertex on an edge: the zero crossing of the TSDF between the two voxel centres, the
 // TSDF gradient as normal, and the radiance interpolated (or taken from the one end seen).
+// `step`: the lattice the key names (CubeTriangles).
 template <typename V>
-HDRF_HD void EdgeVertex(const volume::VolumeView<V>& vol, std::uint64_t key, Float3* p, Float3* nrm, Float3* rad) {
+HDRF_HD void EdgeVertex(const volume::VolumeView<V>& vol, std::uint64_t key, Float3* p, Float3* nrm, Float3* rad,
+                        int step = 1) {
   int lo[3], hi[3];
   DecodeEdgeKey(key, lo, hi);
+  for (int i = 0; i < 3; ++i) lo[i] *= step, hi[i] *= step;
   const volume::Voxel a = vol.Get(lo[0], lo[1], lo[2])->Decode();
   const volume::Voxel b = vol.Get(hi[0], hi[1], hi[2])->Decode();
   const float t = a.tsdf / (a.tsdf - b.tsdf);

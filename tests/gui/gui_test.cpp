@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "gui/display_pacer.h"
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
 #include "gui/scan_worker.h"
@@ -39,6 +40,55 @@ namespace hdrf::gui {
 namespace {
 
 float SrgbCurve(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.f / 2.4f) - 0.055f; }
+
+// The views' pacing: a refresh that costs the window thread more than its share of the
+// machine spaces the refreshes out until the share is met; a cheap one follows every frame;
+// never faster than 40 ms or slower than a second; more cores, a larger share.
+TEST(DisplayPacer, KeepsTheWindowsShareOfTheMachine) {
+  // Simulated: each refresh costs `cost` ms of the thread's CPU, plus `fixed` ms a second of
+  // other window work (the 3-D view); the window asks every 40 ms.
+  const auto run = [](double cost, double fixed, int cores, double* share) {
+    DisplayPacer p(0.05, cores);
+    double cpu = 0;
+    std::int64_t first = -1, last = 0;
+    double cpu_first = 0;
+    int refreshes = 0;
+    for (std::int64_t t = 0; t <= 60000; t += 40) {
+      cpu += fixed * 0.04;
+      if (!p.Due(t)) continue;
+      p.Refreshed(t, cpu);
+      cpu += cost;
+      if (t >= 20000) {  // settled
+        if (first < 0) first = t, cpu_first = cpu - cost;
+        last = t;
+        ++refreshes;
+      }
+    }
+    *share = (cpu - cpu_first) / double(60000 - first);
+    return refreshes / (double(last - first) / 1000.0);
+  };
+  double share = 0;
+  // Dear (16 ms a refresh) on 2 cores: the budget is a tenth of one core.
+  const double rate = run(16, 20, 2, &share);
+  EXPECT_NEAR(share, 0.10, 0.02) << rate;
+  EXPECT_GT(rate, 4.0);
+  EXPECT_LT(rate, 6.5);
+  // Cheap (1 ms): every 40 ms.
+  EXPECT_NEAR(run(1, 0, 2, &share), 25.0, 0.5);
+  EXPECT_LT(share, 0.05);
+  // Dearer than the budget can hold even at a second: once a second.
+  EXPECT_NEAR(run(300, 0, 2, &share), 1.0, 0.05);
+  // Sixteen cores: 80 % of one core; the dear refresh follows every 40 ms.
+  EXPECT_NEAR(run(16, 20, 16, &share), 25.0, 0.5);
+  // Restart: due at once.
+  DisplayPacer p(0.05, 2);
+  p.Refreshed(1000, 0);
+  p.Refreshed(1040, 30);  // 75 % of a core: the next one later
+  EXPECT_FALSE(p.Due(1100));
+  EXPECT_GT(p.interval_ms(), 100);
+  p.Restart();
+  EXPECT_TRUE(p.Due(1100));
+}
 
 TEST(ToneMapper, OcioDisplayTransformIsTheSrgbCurve) {
   ToneMapper tm;

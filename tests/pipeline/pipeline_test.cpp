@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "common/error.h"
@@ -204,6 +205,73 @@ TEST(IncrementalMesh, BricksChangedAlongTheScanGiveTheWholeExtractionsTriangles)
   EXPECT_LT(meshed, 5 * mesher.bricks());
   std::printf("incremental mesh: %zu bricks sent over 5 updates, %zu meshed, model %zu bricks, %zu triangles\n", sent,
               meshed, mesher.bricks(), pieces.triangles.size());
+}
+
+// The coarse surface a view previews a scan with (step 2: every other voxel) lies on the
+// model's surface and covers what the whole surface covers, with about a quarter of its
+// triangles; the bricks changed meanwhile are meshed at step 1 when it is asked for, and
+// then give exactly the whole extraction's triangles.
+TEST(IncrementalMesh, APreviewAtStepTwoLiesOnTheSurfaceAndTheWholeFollows) {
+  const auto frames = Inputs(40);
+  PipelineOptions o;
+  ScanSession s(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  mesh::IncrementalMesher mesher(o.volume);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    s.Process(frames[i]);
+    if (i % 8 == 7) mesher.Apply(s.pipeline().ChangedBricks(), 2);
+  }
+  const mesh::Mesh preview = mesher.Assemble(2);
+  EXPECT_EQ(mesher.pieces(1), 0u);  // nothing meshed at step 1 yet
+  const mesh::Mesh whole = s.pipeline().ExtractMesh();
+  ASSERT_GT(whole.triangles.size(), 10000u);
+  const double share = double(preview.triangles.size()) / double(whole.triangles.size());
+  EXPECT_GT(share, 0.12);
+  EXPECT_LT(share, 0.40);
+  // On the surface: the model's TSDF at each preview vertex, in voxels.
+  const volume::Volume& model = s.pipeline().DownloadVolume();
+  const float vs = o.volume.voxel_m, trunc = o.volume.truncation_m();
+  std::vector<double> off;
+  for (const Float3& p : preview.position) {
+    float f = 0;
+    if (model.SampleTsdf(p, &f)) off.push_back(std::fabs(double(f) * trunc / vs));
+  }
+  ASSERT_GT(off.size(), preview.position.size() * 9 / 10);
+  std::sort(off.begin(), off.end());
+  const double median = off[off.size() / 2], p95 = off[off.size() * 95 / 100];
+  EXPECT_LT(median, 0.25);
+  EXPECT_LT(p95, 1.0);
+  // Covering the whole surface: a preview vertex within two voxels of (nearly) every vertex
+  // of the whole extraction.
+  const auto cell = [vs](const Float3& p) {
+    return std::array<int, 3>{int(std::floor(p.x / vs)), int(std::floor(p.y / vs)), int(std::floor(p.z / vs))};
+  };
+  std::set<std::array<int, 3>> cells;
+  for (const Float3& p : preview.position) cells.insert(cell(p));
+  std::size_t checked = 0, near = 0;
+  for (std::size_t i = 0; i < whole.position.size(); i += 7) {
+    const auto c = cell(whole.position[i]);
+    bool found = false;
+    for (int dz = -2; dz <= 2 && !found; ++dz)
+      for (int dy = -2; dy <= 2 && !found; ++dy)
+        for (int dx = -2; dx <= 2 && !found; ++dx) found = cells.count({c[0] + dx, c[1] + dy, c[2] + dz}) > 0;
+    ++checked;
+    near += found;
+  }
+  EXPECT_GT(double(near), 0.98 * double(checked));
+  std::printf("preview: %zu of %zu triangles (%.2f), |TSDF| at its vertices median %.3f, 95th %.3f voxels, "
+              "%.2f %% of the whole's vertices near one\n",
+              preview.triangles.size(), whole.triangles.size(), share, median, p95, 100.0 * double(near) / double(checked));
+  // Asked for the whole surface: every brick (stale at step 1) meshed, the whole extraction.
+  EXPECT_EQ(mesher.Apply(volume::BrickSet{}, 1), mesher.bricks());
+  EXPECT_EQ(mesher.Apply(volume::BrickSet{}, 1), 0u);  // and nothing again after that
+  const mesh::Mesh pieces = mesher.Assemble(1);
+  EXPECT_EQ(pieces.triangles.size(), whole.triangles.size());
+  std::multiset<std::array<float, 3>> a, b;
+  for (const Float3& p : pieces.position) a.insert({p.x, p.y, p.z});
+  for (const Float3& p : whole.position) b.insert({p.x, p.y, p.z});
+  std::set<std::array<float, 3>> sa(a.begin(), a.end()), sb(b.begin(), b.end());
+  EXPECT_TRUE(sa == sb);
+  test::ExpectErrorContaining([&] { mesher.Apply(volume::BrickSet{}, 3); }, {"step 3"});
 }
 
 }  // namespace
