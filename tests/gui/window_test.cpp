@@ -24,6 +24,7 @@
 #include <QTest>
 #include <QWizard>
 #include <QAction>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -172,6 +173,54 @@ bool WaitUntil(F done, int ms) {
   }
   return true;
 }
+
+// The 3-D view draws offscreen and paints the picture into the window (no OpenGL widget):
+// while the scan runs it shows the coarse preview of the surface, and the whole surface (about
+// four times the triangles) when the scan ends; a mouse drag turns the view, and the
+// interactor's own redraw reaches the window.
+TEST(StudioWindow, The3DViewPreviewsWhileScanningAndFollowsTheMouse) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  StudioOptions o;
+  o.source = "synthetic:frames=40,size=160x120,ae=flicker";
+  o.frames = 40;
+  o.autostart = true;
+  MainWindow w(o);
+  w.resize(1400, 900);
+  w.show();
+  std::size_t preview = 0;
+  QElapsedTimer t;
+  t.start();
+  while (!(w.latest() && w.latest()->report.index >= 39) && t.elapsed() < 120000) {
+    if (w.latest() && w.latest()->report.index < 36) preview = std::max(preview, w.view3d()->mesh_triangles());
+    QTest::qWait(10);
+  }
+  ASSERT_GT(preview, 100u) << "no preview surface was shown while scanning";
+  ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 2 * preview; }, 60000))
+      << "the whole surface did not follow the preview: " << w.view3d()->mesh_triangles() << " triangles, preview "
+      << preview;
+  EXPECT_TRUE(w.view3d()->gl_error().isEmpty()) << w.view3d()->gl_error().toStdString();
+  QTest::qWait(300);
+  const QImage before = w.view3d()->grab().toImage().convertToFormat(QImage::Format_RGB32);
+  QSet<QRgb> colours;
+  for (int y = 0; y < before.height(); y += 4)
+    for (int x = 0; x < before.width(); x += 4) colours.insert(before.pixel(x, y));
+  EXPECT_GT(colours.size(), 50) << "the 3-D view's picture is nearly flat";
+  // Orbit: drag left to right across the middle.
+  VtkView* v = w.view3d();
+  const QPoint c = v->rect().center();
+  QTest::mousePress(v, Qt::LeftButton, {}, c);
+  for (int i = 1; i <= 10; ++i) QTest::mouseMove(v, c + QPoint(15 * i, 5 * i));
+  QTest::mouseRelease(v, Qt::LeftButton, {}, c + QPoint(150, 50));
+  QTest::qWait(300);
+  const QImage after = v->grab().toImage().convertToFormat(QImage::Format_RGB32);
+  ASSERT_EQ(after.size(), before.size());
+  long differ = 0, all = 0;
+  for (int y = 0; y < after.height(); y += 2)
+    for (int x = 0; x < after.width(); x += 2, ++all) differ += after.pixel(x, y) != before.pixel(x, y);
+  EXPECT_GT(double(differ), 0.2 * double(all)) << "the view did not turn with the drag";
+}
+
 
 TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
