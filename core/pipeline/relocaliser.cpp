@@ -31,20 +31,29 @@ RelocCode MakeRelocCode(const ColorImage& color, const DepthImage& depth_m, cons
   c.lit.assign(n, 0);
   std::vector<double> zsum(n, 0), lsum(n, 0);
   std::vector<int> zn(n, 0), ln(n, 0), total(n, 0);
-  for (int y = 0; y < H; ++y) {
-    const int cy = std::min(c.height - 1, y * c.height / H);
-    for (int x = 0; x < W; ++x) {
-      const std::size_t k = std::size_t(cy) * std::size_t(c.width) + std::size_t(std::min(c.width - 1, x * c.width / W));
-      ++total[k];
-      const float z = depth_m(x, y);
-      if (z > 0 && std::isfinite(z)) zsum[k] += z, ++zn[k];
-      const Rgb8 p = color(x, y);
-      const int lo = std::min({p.r, p.g, p.b}), hi = std::max({p.r, p.g, p.b});
-      if (lo < 8 || hi > 247) continue;  // dark or clipped: its radiance is not known
-      const double L = double(inv.table[0][p.r]) + inv.table[1][p.g] + inv.table[2][p.b];
-      if (L > 0) lsum[k] += std::log(L), ++ln[k];
+  // The cell of each column and row, once.
+  std::vector<int> col(static_cast<std::size_t>(W)), row(static_cast<std::size_t>(H));
+  for (int x = 0; x < W; ++x) col[std::size_t(x)] = std::min(c.width - 1, x * c.width / W);
+  for (int y = 0; y < H; ++y) row[std::size_t(y)] = std::min(c.height - 1, y * c.height / H);
+  // The code's rows on the threads: each owns its cells and adds its pixels in the order one
+  // thread would (rows, then columns), so the sums are the same bits for any thread count.
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int cy = 0; cy < c.height; ++cy)
+    for (int y = 0; y < H; ++y) {
+      if (row[std::size_t(y)] != cy) continue;
+      const std::size_t base = std::size_t(cy) * std::size_t(c.width);
+      for (int x = 0; x < W; ++x) {
+        const std::size_t k = base + std::size_t(col[std::size_t(x)]);
+        ++total[k];
+        const float z = depth_m(x, y);
+        if (z > 0 && std::isfinite(z)) zsum[k] += z, ++zn[k];
+        const Rgb8 p = color(x, y);
+        const int lo = std::min({p.r, p.g, p.b}), hi = std::max({p.r, p.g, p.b});
+        if (lo < 8 || hi > 247) continue;  // dark or clipped: its radiance is not known
+        const double L = double(inv.table[0][p.r]) + inv.table[1][p.g] + inv.table[2][p.b];
+        if (L > 0) lsum[k] += std::log(L), ++ln[k];
+      }
     }
-  }
   double mean = 0;
   int lit = 0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -92,6 +101,9 @@ Relocaliser::Relocaliser(const RelocOptions& o) : o_((o.Check(), o)) {}
 bool Relocaliser::Wants(const Pose& T) const {
   const double deg = 3.14159265358979 / 180.0;
   for (const RelocEntry& e : entries_) {
+    // The relative pose's translation is as long as the gap between the two positions: an
+    // entry that far away is not near, whatever the turn (the pose product only for the rest).
+    if ((T.translation() - e.T_world_camera.translation()).norm() >= o_.min_translation_m * (1 + 1e-9)) continue;
     const Pose d = e.T_world_camera.inverse() * T;
     if (se3::TranslationNorm(d) < o_.min_translation_m && se3::RotationAngle(d) < o_.min_rotation_deg * deg)
       return false;

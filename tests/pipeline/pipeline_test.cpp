@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "mesh/incremental_mesh.h"
 #include "mesh/mesh.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/relocaliser.h"
 #include "pipeline/scan_session.h"
 #include "sim/builtin_sensor.h"
 #include "volume/volume.h"
@@ -133,6 +135,50 @@ TEST(Pipeline, AResumeGuideOfAnotherSizeIsRefused) {
   r.raycast_guide = Image<float>(20, 15, 1.f);
   const volume::Volume model(o.volume);
   test::ExpectErrorContaining([&] { p.Resume(model, r); }, {"ray cast guide", "20x15", "40x30"});
+}
+
+// The relocalisation code of a frame: each cell's mean depth of the pixels in it, and the
+// same bits whatever the number of threads that build it (its rows are split among them).
+TEST(Relocaliser, CodeIsEachCellsMeanAndTheSameBitsForAnyThreadCount) {
+  const auto frames = Inputs(2);
+  const FrameInput& f = frames[1];
+  const radiometry::InverseResponse inv = *sim::BuiltinXtionProfile().response;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const RelocCode one = MakeRelocCode(f.color, f.depth_m, inv);
+  ASSERT_FALSE(one.empty());
+  ASSERT_EQ(one.width, 40);
+  // A cell's depth recomputed here: the mean over the pixels whose cell it is.
+  const int W = f.color.width(), H = f.color.height();
+  int checked = 0;
+  for (int cy : {3, one.height / 2, one.height - 2})
+    for (int cx : {2, one.width / 2, one.width - 3}) {
+      double sum = 0;
+      int n = 0, all = 0;
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+          if (y * one.height / H != cy || x * one.width / W != cx) continue;
+          ++all;
+          const float z = f.depth_m(x, y);
+          if (z > 0) sum += z, ++n;
+        }
+      const float d = one.depth[std::size_t(cy * one.width + cx)];
+      if (2 * n >= all && n > 0) {
+        EXPECT_FLOAT_EQ(d, float(sum / n)) << cx << ", " << cy;
+        ++checked;
+      } else {
+        EXPECT_EQ(d, 0.f);
+      }
+    }
+  EXPECT_GE(checked, 5);
+  for (int t : {2, 3, 7}) {
+    omp_set_num_threads(t);
+    const RelocCode c = MakeRelocCode(f.color, f.depth_m, inv);
+    EXPECT_TRUE(c.depth == one.depth) << t << " threads";
+    EXPECT_TRUE(c.shade == one.shade) << t << " threads";
+    EXPECT_TRUE(c.lit == one.lit) << t << " threads";
+  }
+  omp_set_num_threads(threads);
 }
 
 // The studio's surface, kept up to date from the bricks each stretch of frames changed, holds
