@@ -810,12 +810,20 @@ void MainWindow::Render(bool now) {
   UpdateMesh();
   const auto s = latest_;
   if (!s || s == shown_) return;
-  // While a scan runs the views refresh at the pacer's rate (the scan keeps the cores).
+  const double t0 = ThreadCpuMs();
+  // The status (tracking health, frame, timings, memory) follows every snapshot: a loss is
+  // shown at once. The views, while a scan runs, at the pacer's rate (the scan keeps the cores).
+  if (!s->preview && s != status_shown_) {
+    RenderStatus(s);
+    status_shown_ = s;
+  }
   const qint64 wall = QDateTime::currentMSecsSinceEpoch();
-  if (!now && !s->preview && scanning_ && !pacer_.Due(wall)) return;
+  if (!now && !s->preview && scanning_ && !pacer_.Due(wall)) {
+    views_ms_ += ThreadCpuMs() - t0;
+    return;
+  }
   shown_ = s;
   ++frames_shown_;
-  const double t0 = ThreadCpuMs();
   if (scanning_) pacer_.Refreshed(wall, t0);
   RenderSnapshot(s);
   views_ms_ += ThreadCpuMs() - t0;
@@ -890,7 +898,10 @@ void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
   // the mesh a few times a second.
   view3d_->SetTrajectory(s->trajectory, s->camera);
   view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
-  // Status.
+  plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
+}
+
+void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
   const auto& r = s->report;
   frames_label_->setText(tr("Frame %1%2 on the %3")
                              .arg(r.index + 1)
@@ -972,7 +983,6 @@ void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
   } else {
     memory_->setStyleSheet(QString());
   }
-  plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
 }
 
 bool MainWindow::SaveScreenshot(const QString& path) {

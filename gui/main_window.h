@@ -122,6 +122,7 @@ class MainWindow : public QMainWindow {
   void RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s);
   void RenderPreview(const std::shared_ptr<const Snapshot>& s);
   void RenderSnapshot(const std::shared_ptr<const Snapshot>& s);  // the views of one scan snapshot
+  void RenderStatus(const std::shared_ptr<const Snapshot>& s);    // its status panel
   void OnFailed(const QString& message);
   void ApplyEngineSettings();
   void FinishScripted();
@@ -134,7 +135,7 @@ class MainWindow : public QMainWindow {
   QThread thread_;
   ScanWorker* worker_ = nullptr;
   std::unique_ptr<ToneMapper> tone_;
-  std::shared_ptr<const Snapshot> latest_, shown_;
+  std::shared_ptr<const Snapshot> latest_, shown_, status_shown_;
   QPointer<wizard::CalibrationWizard> wizard_;
   QPointer<class ExportDialog> export_dialog_;
   std::shared_ptr<const mesh::Mesh> mesh_shown_, mesh_latest_;

@@ -13,6 +13,7 @@
 #include <QSignalSpy>
 #include <QSettings>
 #include <QTemporaryDir>
+#include <QElapsedTimer>
 #include <QTest>
 #include <QThread>
 #include <cmath>
@@ -44,6 +45,19 @@ float SrgbCurve(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::p
 // The views' pacing: a refresh that costs the window thread more than its share of the
 // machine spaces the refreshes out until the share is met; a cheap one follows every frame;
 // never faster than 40 ms or slower than a second; more cores, a larger share.
+// Processes events until `done` holds or `ms` pass: a wait whose failure gtest sees (QTRY_*
+// report to QtTest, whose failures a gtest test never hears of).
+template <typename F>
+bool WaitFor(F done, int ms) {
+  QElapsedTimer t;
+  t.start();
+  while (!done()) {
+    if (t.elapsed() > ms) return false;
+    QTest::qWait(20);
+  }
+  return true;
+}
+
 TEST(DisplayPacer, KeepsTheWindowsShareOfTheMachine) {
   // Simulated: each refresh costs `cost` ms of the thread's CPU, plus `fixed` ms a second of
   // other window work (the 3-D view); the window asks every 40 ms.
@@ -520,7 +534,7 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
   ASSERT_TRUE(Arrived(finished, 120000));
-  QTRY_VERIFY_WITH_TIMEOUT(!meshes.empty() && meshes.back().second, 60000);
+  ASSERT_TRUE(WaitFor([&] { return !meshes.empty() && meshes.back().second; }, 60000)) << "!meshes.empty() && meshes.back().second";
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i]->report.index, int(i));
