@@ -35,6 +35,7 @@
 #include "sim/sensor_model.h"
 #include "sim/synthetic_source.h"
 #include "support/sim_frames.h"
+#include "support/qt_wait.h"
 #include "support/test_support.h"
 
 namespace hdrf::gui {
@@ -45,19 +46,6 @@ float SrgbCurve(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::p
 // The views' pacing: a refresh that costs the window thread more than its share of the
 // machine spaces the refreshes out until the share is met; a cheap one follows every frame;
 // never faster than 40 ms or slower than a second; more cores, a larger share.
-// Processes events until `done` holds or `ms` pass: a wait whose failure gtest sees (QTRY_*
-// report to QtTest, whose failures a gtest test never hears of).
-template <typename F>
-bool WaitFor(F done, int ms) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QTest::qWait(20);
-  }
-  return true;
-}
-
 TEST(DisplayPacer, KeepsTheWindowsShareOfTheMachine) {
   // Simulated: each refresh costs `cost` ms of the thread's CPU, plus `fixed` ms a second of
   // other window work (the 3-D view); the window asks every 40 ms.
@@ -534,7 +522,7 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   wt.Call([&wt, s] { wt.w->Configure(s); });
   wt.Call([&wt] { wt.w->Start(); });
   ASSERT_TRUE(Arrived(finished, 120000));
-  ASSERT_TRUE(WaitFor([&] { return !meshes.empty() && meshes.back().second; }, 60000)) << "!meshes.empty() && meshes.back().second";
+  ASSERT_TRUE(test::WaitUntil([&] { return !meshes.empty() && meshes.back().second; }, 60000)) << "!meshes.empty() && meshes.back().second";
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i]->report.index, int(i));

@@ -1,5 +1,5 @@
-// The studio window and the studio program on a real X server (Xvfb): QOpenGLWidget and VTK
-// need one (Qt's offscreen platform cannot host them). Without DISPLAY this
+// The studio window and the studio program on a real X server (Xvfb): VTK's OpenGL context
+// needs one (Qt's offscreen platform cannot host them). Without DISPLAY this
 // binary re-runs itself under xvfb-run; where xvfb-run is missing the tests skip with a message.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -38,6 +38,7 @@
 #include "io/project.h"
 #include "io/sequence.h"
 #include "sim/synthetic_source.h"
+#include "support/qt_wait.h"
 #include "support/test_support.h"
 
 #ifndef HDRF_STUDIO_BINARY
@@ -58,19 +59,6 @@ void FreshSettings() {
   // ... and no autosave of an earlier test's window on offer.
   std::error_code ec;
   std::filesystem::remove_all(io::RecoveryFolder(), ec);
-}
-
-// Processes events until `done` holds or `ms` pass (a gtest-visible wait: QTRY_* report to
-// QtTest, not to gtest).
-template <typename F>
-bool WaitUntil(F done, int ms) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QTest::qWait(20);
-  }
-  return true;
 }
 
 TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
@@ -126,15 +114,15 @@ TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
     MainWindow w(o);
     w.resize(1400, 900);
     w.show();
-    ASSERT_TRUE(WaitUntil([&] { return w.frames_shown() > 0 && w.health_text().contains("Tracking"); }, 120000)) << "w.frames_shown() > 0 && w.health_text().contains('Tracking')";
-    ASSERT_TRUE(WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 120000)) << "w.view('model_radiance')->DistinctLevels() > 8";
+    ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 0 && w.health_text().contains("Tracking"); }, 120000)) << "w.frames_shown() > 0 && w.health_text().contains('Tracking')";
+    ASSERT_TRUE(test::WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 120000)) << "w.view('model_radiance')->DistinctLevels() > 8";
     for (const char* k : {"colour", "depth", "radiance", "nr", "confidence", "model_radiance", "model_normals"}) {
       EXPECT_GT(w.view(k)->DistinctLevels(), 8) << k;
       EXPECT_FALSE(w.view(k)->ValueAt(80, 60).isEmpty()) << k;
     }
     EXPECT_TRUE(w.view("depth")->ValueAt(80, 60).contains(" m") || w.view("depth")->ValueAt(80, 60).contains("no depth"));
     EXPECT_TRUE(w.view("radiance")->HasHdr());
-    ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 120000)) << "w.view3d()->mesh_triangles() > 1000";
+    ASSERT_TRUE(test::WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 120000)) << "w.view3d()->mesh_triangles() > 1000";
     w.dock("nr")->close();
     w.close();  // saves layout and settings
   }
@@ -161,7 +149,7 @@ TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
   MainWindow w(o);
   w.resize(1400, 900);
   w.show();
-  ASSERT_TRUE(WaitUntil([&] { return w.frames_shown() > 3 && w.view("model_radiance")->DistinctLevels() > 8; }, 120000));
+  ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 3 && w.view("model_radiance")->DistinctLevels() > 8; }, 120000));
   auto* op = w.findChild<QComboBox*>("tone_operator");
   ASSERT_NE(op, nullptr);
   for (const char* key : {"mantiuk06", "reinhard", "mantiuk08"}) {
@@ -169,7 +157,7 @@ TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
     const int frame = w.latest()->report.index;
     op->setCurrentIndex(op->findData(key));
     // The views refreshed with the new operator three times while the scan went on.
-    ASSERT_TRUE(WaitUntil([&] { return w.frames_shown() > before + 3; }, 60000)) << key;
+    ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > before + 3; }, 60000)) << key;
     EXPECT_GT(w.latest()->report.index, frame + 3) << key;
     EXPECT_GT(w.view("model_radiance")->DistinctLevels(), 8) << key;
     EXPECT_GT(w.view("radiance")->DistinctLevels(), 8) << key;
@@ -203,7 +191,7 @@ TEST(StudioWindow, The3DViewPreviewsWhileScanningAndFollowsTheMouse) {
     QTest::qWait(10);
   }
   ASSERT_GT(preview, 100u) << "no preview surface was shown while scanning";
-  ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 2 * preview; }, 60000))
+  ASSERT_TRUE(test::WaitUntil([&] { return w.view3d()->mesh_triangles() > 2 * preview; }, 60000))
       << "the whole surface did not follow the preview: " << w.view3d()->mesh_triangles() << " triangles, preview "
       << preview;
   EXPECT_TRUE(w.view3d()->gl_error().isEmpty()) << w.view3d()->gl_error().toStdString();
@@ -229,7 +217,7 @@ TEST(StudioWindow, The3DViewPreviewsWhileScanningAndFollowsTheMouse) {
       for (int x = 0; x < after.width(); x += 2, ++all) differ += after.pixel(x, y) != before.pixel(x, y);
     return double(differ) / double(all);
   };
-  EXPECT_TRUE(WaitUntil([&] { return changed() > 0.05; }, 5000))
+  EXPECT_TRUE(test::WaitUntil([&] { return changed() > 0.05; }, 5000))
       << "the view did not turn with the drag: " << 100 * changed() << " % of the picture changed";
 }
 
@@ -246,7 +234,7 @@ TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
   w.show();
   QElapsedTimer clock;
   clock.start();
-  ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= 35; }, 120000))
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->report.index >= 35; }, 120000))
       << "the scan did not reach frame 35; frames shown: " << w.frames_shown();
   std::fprintf(stderr, "scanned %d frames in %.1f s\n", w.latest()->report.index + 1, clock.elapsed() / 1000.0);
   QTemporaryDir tmp;
@@ -256,7 +244,7 @@ TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
   dlg->findChild<QLineEdit*>("export_folder")->setText(tmp.filePath("asset"));
   dlg->findChild<QPushButton*>("export_start")->click();
   EXPECT_TRUE(dlg->busy());
-  ASSERT_TRUE(WaitUntil([&] { return !dlg->busy(); }, 180000));
+  ASSERT_TRUE(test::WaitUntil([&] { return !dlg->busy(); }, 180000));
   std::fprintf(stderr, "exported at %.1f s: %s\n", clock.elapsed() / 1000.0, dlg->status_text().toStdString().c_str());
   EXPECT_TRUE(dlg->status_text().startsWith("Wrote")) << dlg->status_text().toStdString();
   for (const char* f : {"mesh.obj", "mesh.mtl", "mesh.glb", "mesh.ply", "texture.exr", "texture.png", "export.json"})
@@ -281,7 +269,7 @@ TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
   dlg->findChild<QLineEdit*>("export_folder")->setText(tmp.filePath("cancelled"));
   dlg->findChild<QPushButton*>("export_start")->click();
   dlg->findChild<QPushButton*>("export_cancel")->click();
-  ASSERT_TRUE(WaitUntil([&] { return !dlg->busy(); }, 180000));
+  ASSERT_TRUE(test::WaitUntil([&] { return !dlg->busy(); }, 180000));
   std::fprintf(stderr, "cancelled at %.1f s\n", clock.elapsed() / 1000.0);
   EXPECT_TRUE(dlg->status_text().contains("cancelled")) << dlg->status_text().toStdString();
   EXPECT_EQ(QDir(tmp.filePath("cancelled")).entryList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot | QDir::Hidden),
@@ -307,11 +295,11 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     o.offer_recovery = false;
     MainWindow w(o);
     w.show();
-    ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= 11; }, 120000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->report.index >= 11; }, 120000));
     QTest::qWait(500);  // paused (a few frames after the 12th: the pause is queued)
     saved_frames = w.latest()->report.index + 1;
     w.SaveProject(saved);
-    ASSERT_TRUE(WaitUntil([&] { return w.project_path() == saved; }, 60000)) << w.error_text().toStdString();
+    ASSERT_TRUE(test::WaitUntil([&] { return w.project_path() == saved; }, 60000)) << w.error_text().toStdString();
     w.close();
   }
   EXPECT_EQ(io::LoadProject(saved.toStdString()).resume.frames, saved_frames);
@@ -324,10 +312,10 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     MainWindow w(o);
     w.resize(1400, 900);
     w.show();
-    ASSERT_TRUE(WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == saved_frames; }, 60000))
+    ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == saved_frames; }, 60000))
         << w.error_text().toStdString();
-    ASSERT_TRUE(WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000));
-    ASSERT_TRUE(WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 60000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 60000));
     EXPECT_EQ(w.source_text().toStdString(), spec);
     // The allocated region is drawn around the model (the room seen from its first frames).
     const auto region = w.view3d()->region();
@@ -336,7 +324,7 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     EXPECT_TRUE(w.windowTitle().contains("room.hdrproj"));
     if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) w.grab().save(QString(shots) + "/studio_project.png");
     w.StartScan();
-    ASSERT_TRUE(WaitUntil([&] { return w.latest() && w.latest()->report.index >= saved_frames + 5; }, 120000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->report.index >= saved_frames + 5; }, 120000));
     w.PauseScan();
     QTest::qWait(500);
     // Frame indices go on from the project's: the scan continued, it did not start again.
@@ -354,7 +342,7 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     MainWindow w(o);
     w.resize(1400, 900);
     w.show();
-    ASSERT_TRUE(WaitUntil([&] { return w.recovery_offer() != nullptr; }, 20000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.recovery_offer() != nullptr; }, 20000));
     QMessageBox* box = w.recovery_offer();
     EXPECT_TRUE(box->text().contains(QString::fromStdString(found.front().string())));
     if (const char* shots = std::getenv("HDRF_DOCS_SHOTS")) box->grab().save(QString(shots) + "/studio_recovery.png");
@@ -363,11 +351,11 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
       if (b->text() == "Open") open = b;
     ASSERT_NE(open, nullptr);
     open->click();
-    ASSERT_TRUE(WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == frames_left; }, 60000));
+    ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == frames_left; }, 60000));
     EXPECT_TRUE(w.project_path().isEmpty());  // a recovered scan is saved where the user says
     const QString again = tmp.filePath("recovered.hdrproj");
     w.SaveProject(again);
-    ASSERT_TRUE(WaitUntil([&] { return w.project_path() == again; }, 60000)) << w.error_text().toStdString();
+    ASSERT_TRUE(test::WaitUntil([&] { return w.project_path() == again; }, 60000)) << w.error_text().toStdString();
     EXPECT_FALSE(std::filesystem::exists(found.front()));  // the autosave went once saved
     w.close();
   }
@@ -382,7 +370,7 @@ TEST(StudioWindow, ASourceErrorShowsAMessage) {
   o.source = "/nonexistent/sequence-folder";
   MainWindow w(o);
   w.show();
-  ASSERT_TRUE(WaitUntil([&] { return w.error_text().contains("/nonexistent/sequence-folder"); }, 20000)) << "w.error_text().contains('/nonexistent/sequence-folder')";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.error_text().contains("/nonexistent/sequence-folder"); }, 20000)) << "w.error_text().contains('/nonexistent/sequence-folder')";
 }
 
 // The camera covered midway: the status says the frames are lost and why, and shows the
@@ -414,7 +402,7 @@ TEST(StudioWindow, ALostScanSaysSoAndShowsWhereToPointTheCamera) {
   MainWindow w(o);
   w.resize(1400, 900);
   w.show();
-  ASSERT_TRUE(WaitUntil([&] { return w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30; }, 120000)) << "w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30; }, 120000)) << "w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30";
   EXPECT_TRUE(w.health_text().contains("TRACKING LOST")) << w.health_text().toStdString();
   EXPECT_TRUE(w.health_text().contains("no correspondences")) << w.health_text().toStdString();
   auto* hint = w.findChild<QLabel*>("reloc_hint");

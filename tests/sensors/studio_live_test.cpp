@@ -33,6 +33,7 @@
 #include "io/source_spec.h"
 #include "sensors/profiles.h"
 #include "sim/builtin_sensor.h"
+#include "support/qt_wait.h"
 #include "support/test_support.h"
 
 namespace hdrf::gui {
@@ -77,19 +78,6 @@ void SaveDocsShot(MainWindow& w, const char* name) {
   w.SaveScreenshot(dir + "/" + name);
 }
 
-// Processes events until `done` holds or `ms` pass: a wait whose failure gtest sees (QTRY_*
-// report to QtTest, whose failures a gtest test never hears of).
-template <typename F>
-bool WaitFor(F done, int ms) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QTest::qWait(20);
-  }
-  return true;
-}
-
 TEST(StudioLive, ListsOnPlugEventsPreviewsControlsAndRecords) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
@@ -102,33 +90,33 @@ TEST(StudioLive, ListsOnPlugEventsPreviewsControlsAndRecords) {
   SensorPanel* panel = w.sensor_panel();
   ASSERT_NE(panel, nullptr);
   // The list: the device with its serial; it follows unplug and replug.
-  ASSERT_TRUE(WaitFor([&] { return panel->device_count() == 1 && panel->device_text(0).contains(kSerial); }, 20000)) << "panel->device_count() == 1 && panel->device_text(0).contains(kSerial)";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->device_count() == 1 && panel->device_text(0).contains(kSerial); }, 20000)) << "panel->device_count() == 1 && panel->device_text(0).contains(kSerial)";
   Plug(false);
-  ASSERT_TRUE(WaitFor([&] { return panel->device_text(0).contains("No camera"); }, 20000)) << "panel->device_text(0).contains('No camera')";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->device_text(0).contains("No camera"); }, 20000)) << "panel->device_text(0).contains('No camera')";
   Plug(true);
-  ASSERT_TRUE(WaitFor([&] { return panel->device_text(0).contains(kSerial); }, 20000)) << "panel->device_text(0).contains(kSerial)";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->device_text(0).contains(kSerial); }, 20000)) << "panel->device_text(0).contains(kSerial)";
 
   // Preview: the camera's frames show before any scan; no frame goes into a model.
   w.dock("sensor")->raise();
   Child<QPushButton>(w, "sensor_open")->click();
-  ASSERT_TRUE(WaitFor([&] { return w.latest() && w.latest()->preview && w.latest()->live; }, 30000)) << "w.latest() && w.latest()->preview && w.latest()->live";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->preview && w.latest()->live; }, 30000)) << "w.latest() && w.latest()->preview && w.latest()->live";
   EXPECT_TRUE(w.source_text().startsWith(QString("openni:device=") + kSerial)) << w.source_text().toStdString();
-  ASSERT_TRUE(WaitFor([&] { return w.view("colour")->DistinctLevels() > 8 && w.view("depth")->DistinctLevels() > 8; }, 20000)) << "w.view('colour')->DistinctLevels() > 8 && w.view('depth')->DistinctLevels() > 8";
-  ASSERT_TRUE(WaitFor([&] { return panel->status_text().contains("frames/s"); }, 20000)) << "panel->status_text().contains('frames/s')";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.view("colour")->DistinctLevels() > 8 && w.view("depth")->DistinctLevels() > 8; }, 20000)) << "w.view('colour')->DistinctLevels() > 8 && w.view('depth')->DistinctLevels() > 8";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->status_text().contains("frames/s"); }, 20000)) << "panel->status_text().contains('frames/s')";
   QTest::qWait(1000);
   EXPECT_EQ(Scanned(w), 0) << "the preview must not scan";
   EXPECT_GT(w.latest()->live->fps, 20.0);
 
   // Exposure controls: auto exposure off, 8 ms, gain 200; then auto exposure back on.
   Child<QCheckBox>(w, "sensor_ae")->setChecked(false);
-  ASSERT_TRUE(WaitFor([&] { return w.latest() && w.latest()->live && !w.latest()->live->exposure.auto_exposure; }, 20000)) << "w.latest() && w.latest()->live && !w.latest()->live->exposure.auto_exposure";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->live && !w.latest()->live->exposure.auto_exposure; }, 20000)) << "w.latest() && w.latest()->live && !w.latest()->live->exposure.auto_exposure";
   Child<QDoubleSpinBox>(w, "sensor_exposure")->setValue(8.0);
-  ASSERT_TRUE(WaitFor([&] { return w.latest()->live->exposure.exposure_raw == 80; }, 20000)) << "w.latest()->live->exposure.exposure_raw == 80";
-  ASSERT_TRUE(WaitFor([&] { return panel->status_text().contains("exposure 8.0 ms"); }, 20000)) << "panel->status_text().contains('exposure 8.0 ms')";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest()->live->exposure.exposure_raw == 80; }, 20000)) << "w.latest()->live->exposure.exposure_raw == 80";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->status_text().contains("exposure 8.0 ms"); }, 20000)) << "panel->status_text().contains('exposure 8.0 ms')";
   Child<QSpinBox>(w, "sensor_gain")->setValue(200);
-  ASSERT_TRUE(WaitFor([&] { return w.latest()->live->exposure.gain == 200; }, 20000)) << "w.latest()->live->exposure.gain == 200";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest()->live->exposure.gain == 200; }, 20000)) << "w.latest()->live->exposure.gain == 200";
   Child<QCheckBox>(w, "sensor_awb")->setChecked(false);
-  ASSERT_TRUE(WaitFor([&] { return !w.latest()->live->exposure.auto_white_balance; }, 20000)) << "!w.latest()->live->exposure.auto_white_balance";
+  ASSERT_TRUE(test::WaitUntil([&] { return !w.latest()->live->exposure.auto_white_balance; }, 20000)) << "!w.latest()->live->exposure.auto_white_balance";
   SaveDocsShot(w, "studio-live.png");
 
   // Record about 40 frames from the preview; the panel counts them; the folder is a sequence.
@@ -136,11 +124,11 @@ TEST(StudioLive, ListsOnPlugEventsPreviewsControlsAndRecords) {
   const QString folder = dir.filePath("recording");
   panel->SetRecordingPath(folder);
   Child<QPushButton>(w, "sensor_record")->click();
-  ASSERT_TRUE(WaitFor([&] { return panel->recording_text().contains("Recording to"); }, 20000)) << "panel->recording_text().contains('Recording to')";
-  ASSERT_TRUE(WaitFor([&] { return w.latest()->live->recording_stats.written >= 40; }, 30000)) << "w.latest()->live->recording_stats.written >= 40";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->recording_text().contains("Recording to"); }, 20000)) << "panel->recording_text().contains('Recording to')";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.latest()->live->recording_stats.written >= 40; }, 30000)) << "w.latest()->live->recording_stats.written >= 40";
   SaveDocsShot(w, "studio-recording.png");
   Child<QPushButton>(w, "sensor_record")->click();
-  ASSERT_TRUE(WaitFor([&] { return panel->recording_text().startsWith("Recorded"); }, 30000)) << "panel->recording_text().startsWith('Recorded')";
+  ASSERT_TRUE(test::WaitUntil([&] { return panel->recording_text().startsWith("Recorded"); }, 30000)) << "panel->recording_text().startsWith('Recorded')";
   const QRegularExpressionMatch m =
       QRegularExpression("Recorded (\\d+) frames \\(([0-9.]+) MB, ([0-9.]+) s, (\\d+) dropped\\)").match(panel->recording_text());
   ASSERT_TRUE(m.hasMatch()) << panel->recording_text().toStdString();
@@ -172,14 +160,14 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
   MainWindow w(o);
   w.resize(1600, 1000);
   w.show();
-  ASSERT_TRUE(WaitFor([&] { return Scanned(w) >= 20 && !w.latest()->preview; }, 120000)) << "Scanned(w) >= 20 && !w.latest()->preview";
-  ASSERT_TRUE(WaitFor([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000)) << "w.view3d()->mesh_triangles() > 1000";
+  ASSERT_TRUE(test::WaitUntil([&] { return Scanned(w) >= 20 && !w.latest()->preview; }, 120000)) << "Scanned(w) >= 20 && !w.latest()->preview";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000)) << "w.view3d()->mesh_triangles() > 1000";
   Plug(false);
-  ASSERT_TRUE(WaitFor([&] { return w.error_text().contains("unplugged"); }, 20000)) << "w.error_text().contains('unplugged')";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.error_text().contains("unplugged"); }, 20000)) << "w.error_text().contains('unplugged')";
   EXPECT_TRUE(w.error_text().contains("model is kept")) << w.error_text().toStdString();
   const int at_unplug = Scanned(w);
   // The surface of the model as it was at the unplug (meshed off the scan's thread) is shown.
-  ASSERT_TRUE(WaitFor([&] { return w.surface_final(); }, 20000)) << "w.surface_final()";
+  ASSERT_TRUE(test::WaitUntil([&] { return w.surface_final(); }, 20000)) << "w.surface_final()";
   const auto triangles = w.view3d()->mesh_triangles();
   QTest::qWait(1500);
   EXPECT_EQ(Scanned(w), at_unplug) << "no frame may be scanned while the camera is away";
@@ -188,7 +176,7 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
   SaveDocsShot(w, "studio-unplugged.png");
   // The camera comes back: the same scan goes on (frames counted on from where it stopped).
   Plug(true);
-  ASSERT_TRUE(WaitFor([&] { return Scanned(w) >= at_unplug + 20 && !w.latest()->preview; }, 120000)) << "Scanned(w) >= at_unplug + 20 && !w.latest()->preview";
+  ASSERT_TRUE(test::WaitUntil([&] { return Scanned(w) >= at_unplug + 20 && !w.latest()->preview; }, 120000)) << "Scanned(w) >= at_unplug + 20 && !w.latest()->preview";
   EXPECT_TRUE(w.error_text().isEmpty()) << w.error_text().toStdString();
   const auto& s = *w.latest();
   EXPECT_EQ(int(s.trajectory.size()), Scanned(w));
@@ -206,7 +194,7 @@ TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
   // Paused, the whole surface follows the scan's preview: the kept model and what the
   // frames since the replug added (at least the surface shown at the unplug).
   w.PauseScan();
-  ASSERT_TRUE(WaitFor([&] { return w.surface_final() && w.view3d()->mesh_triangles() >= triangles * 9 / 10; }, 60000))
+  ASSERT_TRUE(test::WaitUntil([&] { return w.surface_final() && w.view3d()->mesh_triangles() >= triangles * 9 / 10; }, 60000))
       << w.view3d()->mesh_triangles() << " triangles after the replug, " << triangles << " at the unplug";
 }
 

@@ -41,7 +41,7 @@ struct CommandResult {
 };
 CommandResult RunCommand(const std::string& command);
 
-// For test programs that need an X display (QOpenGLWidget, VTK): without DISPLAY, re-runs
+// For test programs that need an X display (OpenGL contexts, VTK): without DISPLAY, re-runs
 // this program under `xvfb-run` (once; never when only listing tests) and does not return.
 // Returns whether a display is there now (false: xvfb-run is missing, the tests skip).
 bool EnsureDisplay(int argc, char** argv);
