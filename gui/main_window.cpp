@@ -172,7 +172,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
   }
   // The scan thread.
   worker_ = new ScanWorker;
-  worker_->SetFullDetailWhileScanning(full_detail_->isChecked());
+  worker_->SetPreviewStep(preview_.Start(full_detail_->isChecked()));
   worker_->moveToThread(&thread_);
   connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
   connect(this, &MainWindow::configure, worker_, &ScanWorker::Configure);
@@ -199,6 +199,9 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
     // While scanning the window tone maps on its own thread alone: its OpenMP threads would
     // only contend with the scan's for the cores (and the pacer measures this thread).
     omp_set_num_threads(running ? 1 : window_threads_);
+    worker_->SetImagesIntervalMs(0);  // every frame's until the pacer has measured
+    // Each scan's preview starts at every other voxel (UpdateMesh coarsens it on a slow display).
+    if (running) worker_->SetPreviewStep(preview_.Start(full_detail_->isChecked()));
     statusBar()->showMessage(msg);
     start_->setEnabled(!running);
     pause_->setEnabled(running);
@@ -465,8 +468,31 @@ void MainWindow::BuildStatus() {
   error_->setWordWrap(true);
   error_->setStyleSheet("QLabel { color: white; background: #a02020; padding: 4px; }");
   error_->hide();
-  stages_ = new QLabel;
-  stages_->setTextFormat(Qt::RichText);
+  // Stage times as a grid of plain labels made once (a rich-text table re-laid out its whole
+  // document on every frame): names left, times right-aligned, two column pairs.
+  stages_ = new QWidget;
+  auto* grid = new QGridLayout(stages_);
+  grid->setContentsMargins(0, 0, 0, 0);
+  grid->setHorizontalSpacing(6);
+  grid->setVerticalSpacing(0);
+  grid->setColumnMinimumWidth(2, 10);
+  const QString stage_names[] = {tr("convert"), tr("normalize"), tr("track"), tr("compensate"), tr("integrate"), tr("ray cast")};
+  for (int i = 0; i < 6; ++i) {
+    grid->addWidget(new QLabel(stage_names[i]), i / 2, 3 * (i % 2));
+    stage_ms_[i] = new QLabel;
+    stage_ms_[i]->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    grid->addWidget(stage_ms_[i], i / 2, 3 * (i % 2) + 1);
+  }
+  auto* total = new QLabel(tr("total"));
+  QFont bold = total->font();
+  bold.setBold(true);
+  total->setFont(bold);
+  grid->addWidget(total, 3, 0);
+  stage_ms_[6] = new QLabel;
+  stage_ms_[6]->setFont(bold);
+  stage_ms_[6]->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+  grid->addWidget(stage_ms_[6], 3, 1, 1, 4);
+  grid->setColumnStretch(5, 1);
   memory_ = new QLabel;
   memory_->setObjectName("memory");
   memory_->setWordWrap(true);
@@ -636,11 +662,12 @@ void MainWindow::BuildMenus() {
   full_detail->setObjectName("action_full_detail");
   full_detail->setCheckable(true);
   full_detail->setToolTip(tr("Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, "
-                             "a quarter of the triangles), which leaves more of the processor to the scan; the whole "
-                             "surface follows when the scan stops"));
+                             "a quarter of the triangles; every fourth where the display cannot draw that quickly), "
+                             "which leaves more of the processor to the scan; the whole surface follows when the scan "
+                             "stops"));
   full_detail->setChecked(QSettings().value("view/full_detail_while_scanning", false).toBool());
   connect(full_detail, &QAction::toggled, this, [this](bool on) {
-    worker_->SetFullDetailWhileScanning(on);
+    worker_->SetPreviewStep(preview_.Start(on));
     QSettings().setValue("view/full_detail_while_scanning", on);
   });
   view->addAction(tr("Restore default layout"), this, [this] {
@@ -719,6 +746,7 @@ void MainWindow::ResetScan() {
 
 void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
   latest_ = std::move(s);  // older ones not shown yet are simply dropped
+  if (latest_->has_images) images_snap_ = latest_;
   if (!latest_->preview) {
     const qint64 now = QDateTime::currentMSecsSinceEpoch();
     if (scan_first_ms_ < 0) scan_first_ms_ = now, scan_first_frame_ = latest_->report.index;
@@ -796,7 +824,11 @@ void MainWindow::UpdateMesh() {
   const qint64 now = QDateTime::currentMSecsSinceEpoch();
   if (!mesh_latest_ || mesh_latest_ == mesh_shown_) return;
   if (mesh_shown_ && now - mesh_time_ms_ < 300 && !mesh_latest_last_) return;
+  // How long the display took to redraw the preview shown: a slow one is coarsened.
+  if (scanning_ && mesh_shown_ && !mesh_shown_last_ && view3d_->redraws() > 0)
+    worker_->SetPreviewStep(preview_.Redrawn(view3d_->last_redraw_ms()));
   mesh_shown_ = mesh_latest_;
+  mesh_shown_last_ = mesh_latest_last_;
   mesh_time_ms_ = now;
   ++mesh_updates_;
   if (scan_first_ms_ >= 0 && now <= scan_last_ms_ + 100) ++mesh_updates_in_scan_;
@@ -813,19 +845,27 @@ void MainWindow::Render(bool now) {
   const double t0 = ThreadCpuMs();
   // The status (tracking health, frame, timings, memory) follows every snapshot: a loss is
   // shown at once. The views, while a scan runs, at the pacer's rate (the scan keeps the cores).
-  if (!s->preview && s != status_shown_) {
+  const qint64 wall = QDateTime::currentMSecsSinceEpoch();
+  if (!s->preview && s != status_shown_ &&
+      (now || !scanning_ || wall - status_ms_ >= kStatusMs || StatusKey(*s) != status_key_)) {
     RenderStatus(s);
     status_shown_ = s;
+    status_ms_ = wall;
   }
-  const qint64 wall = QDateTime::currentMSecsSinceEpoch();
   if (!now && !s->preview && scanning_ && !pacer_.Due(wall)) {
     views_ms_ += ThreadCpuMs() - t0;
     return;
   }
   shown_ = s;
   ++frames_shown_;
-  if (scanning_) pacer_.Refreshed(wall, t0);
-  RenderSnapshot(s);
+  if (scanning_) {
+    pacer_.Refreshed(wall, t0);
+    // The scan copies the stage images twice per refresh (the views are at most half an
+    // interval old); the frame shown is the last that carries them (its colour, status and
+    // images all of one frame).
+    worker_->SetImagesIntervalMs(int(pacer_.interval_ms() / 2));
+  }
+  RenderSnapshot(s->preview || s->has_images || !images_snap_ ? s : images_snap_);
   views_ms_ += ThreadCpuMs() - t0;
 }
 
@@ -901,7 +941,26 @@ void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
   plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
 }
 
+namespace {
+
+// A label's style sheet set only when it changes (setting one re-polishes the widget).
+void SetStyle(QLabel* l, const QString& sheet) {
+  if (l->styleSheet() != sheet) l->setStyleSheet(sheet);
+}
+
+}  // namespace
+
+// What must reach the status panel at once: the tracking's state and its warnings.
+QString MainWindow::StatusKey(const Snapshot& s) {
+  const auto& r = s.report;
+  return QStringList{QString::number(int(r.state)), QString::number(r.fused), QString::number(r.quality < 0.5),
+                     QString::number(r.depth_beyond_far > 0.25), QString::fromStdString(r.why),
+                     QString::number(s.reloc_hint_frame), QString::number(s.volume_full.empty())}
+      .join(QLatin1Char('|'));
+}
+
 void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
+  status_key_ = StatusKey(*s);
   const auto& r = s->report;
   frames_label_->setText(tr("Frame %1%2 on the %3")
                              .arg(r.index + 1)
@@ -917,13 +976,13 @@ void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
   const QString why = wizard::EngineText(r.why);
   if (r.state == FrameState::kWaiting) {
     health_->setText(tr("WAITING: %1").arg(why) + far);
-    health_->setStyleSheet("QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
+    SetStyle(health_, "QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
   } else if (r.state == FrameState::kLost) {
     health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(why) + far);
-    health_->setStyleSheet("QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
+    SetStyle(health_, "QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
   } else if (!r.fused) {
     health_->setText(tr("FOUND AGAIN, CONFIRMING: %1 (frame not fused)").arg(why) + far);
-    health_->setStyleSheet("QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
+    SetStyle(health_, "QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
   } else {
     // The quality figure warns before a loss: below one half the operator should slow down.
     const bool slow = r.quality < 0.5;
@@ -933,35 +992,26 @@ void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
                          .arg(int(100 * r.tracking.inlier_share)) +
                      (r.state == FrameState::kRelocalised ? "\n" + tr("Relocalised from an earlier view") : QString()) +
                      far);
-    health_->setStyleSheet(far.isEmpty() && !slow ? "QLabel { color: white; background: #207040; padding: 3px; }"
+    SetStyle(health_, far.isEmpty() && !slow ? "QLabel { color: white; background: #207040; padding: 3px; }"
                                                   : "QLabel { color: white; background: #a07010; padding: 3px; }");
   }
-  if (!s->reloc_hint.empty()) {
+  if (!s->reloc_hint.empty() && s->reloc_hint_frame != reloc_hint_frame_) {
+    reloc_hint_frame_ = s->reloc_hint_frame;
     reloc_hint_->setPixmap(QPixmap::fromImage(FromColor(s->reloc_hint))
                                .scaled(240, 180, Qt::KeepAspectRatio, Qt::SmoothTransformation));
     reloc_hint_->setToolTip(tr("The scan's view at frame %1").arg(s->reloc_hint_frame + 1));
     reloc_caption_->setText(tr("Point the camera where the scan saw this (frame %1):").arg(s->reloc_hint_frame + 1));
     reloc_hint_->show();
     reloc_caption_->show();
-  } else {
+  } else if (s->reloc_hint.empty()) {
+    reloc_hint_frame_ = -1;
     reloc_hint_->hide();
     reloc_caption_->hide();
   }
   const auto& m = r.ms;
-  // Per-stage times in two column pairs (four rows).
-  const auto cell = [](const QString& name, double ms) {
-    return QStringLiteral("<td>%1</td><td align=right>%L2 ms</td>").arg(name).arg(ms, 0, 'f', 1);
-  };
-  const QString gap = QStringLiteral("<td width=16></td>");
-  stages_->setText(QStringLiteral("<table><tr>%1%8%2</tr><tr>%3%8%4</tr><tr>%5%8%6</tr><tr>%7</tr></table>")
-                       .arg(cell(tr("convert"), m.convert), cell(tr("normalize"), m.normalize),
-                            cell(tr("track"), m.track), cell(tr("compensate"), m.compensate),
-                            cell(tr("integrate"), m.integrate), cell(tr("ray cast"), m.raycast),
-                            QStringLiteral("<td><b>%1</b></td><td align=right colspan=4><b>%2</b></td>")
-                                .arg(tr("total"), tr("%L1 ms (%L2 frames/s)")
-                                                      .arg(m.total(), 0, 'f', 1)
-                                                      .arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1)),
-                            gap));
+  const double ms[] = {m.convert, m.normalize, m.track, m.compensate, m.integrate, m.raycast};
+  for (int i = 0; i < 6; ++i) stage_ms_[i]->setText(tr("%L1 ms").arg(ms[i], 0, 'f', 1));
+  stage_ms_[6]->setText(tr("%L1 ms (%L2 frames/s)").arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
   memory_->setText(tr("Volume: %L1 of %L2 MiB in %3 bricks")
                        .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
                        .arg(s->volume_budget_mb, 0, 'f', 0)
@@ -979,9 +1029,9 @@ void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
     memory_->setText(memory_->text() + "\n" +
                      tr("VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and "
                         "exported.").arg(QString::fromStdString(s->volume_full)));
-    memory_->setStyleSheet("QLabel { color: white; background: #b06010; padding: 3px; }");
+    SetStyle(memory_, "QLabel { color: white; background: #b06010; padding: 3px; }");
   } else {
-    memory_->setStyleSheet(QString());
+    SetStyle(memory_, QString());
   }
 }
 
@@ -1032,6 +1082,7 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   display["views_cpu_ms"] = views_ms_;
   display["views_interval_ms"] = pacer_.interval_ms();
   display["mesh_handover_cpu_ms"] = mesh_handover_ms_;
+  display["preview_step"] = preview_.step();  // the surface's lattice while the scan ran (last)
   display["redraws"] = view3d_->redraws();
   display["redraw_ms"] = view3d_->redraw_ms();
   report["display"] = display;

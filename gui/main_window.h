@@ -7,9 +7,11 @@
 #include <QPointer>
 #include <QMap>
 #include <QThread>
+#include <array>
 #include <memory>
 
 #include "gui/display_pacer.h"
+#include "gui/preview_detail.h"
 #include "gui/scan_worker.h"
 #include "gui/tone_mapper.h"
 #include "sensors/openni_camera.h"
@@ -123,6 +125,7 @@ class MainWindow : public QMainWindow {
   void RenderPreview(const std::shared_ptr<const Snapshot>& s);
   void RenderSnapshot(const std::shared_ptr<const Snapshot>& s);  // the views of one scan snapshot
   void RenderStatus(const std::shared_ptr<const Snapshot>& s);    // its status panel
+  static QString StatusKey(const Snapshot& s);                   // what the panel shows at once
   void OnFailed(const QString& message);
   void ApplyEngineSettings();
   void FinishScripted();
@@ -136,10 +139,12 @@ class MainWindow : public QMainWindow {
   ScanWorker* worker_ = nullptr;
   std::unique_ptr<ToneMapper> tone_;
   std::shared_ptr<const Snapshot> latest_, shown_, status_shown_;
+  std::shared_ptr<const Snapshot> images_snap_;  // the latest snapshot that carries stage images
   QPointer<wizard::CalibrationWizard> wizard_;
   QPointer<class ExportDialog> export_dialog_;
   std::shared_ptr<const mesh::Mesh> mesh_shown_, mesh_latest_;
   bool mesh_latest_last_ = false;  // mesh_latest_ is the surface at the scan's stop
+  bool mesh_shown_last_ = false;   // mesh_shown_ is (a preview while scanning, when false)
   qint64 mesh_time_ms_ = 0;
   // What the studio's benchmark reads (the screenshot's JSON): the scan's frames and time
   // between its first and last snapshot, and the 3-D view's mesh updates in that time.
@@ -151,6 +156,7 @@ class MainWindow : public QMainWindow {
   QMap<QString, QDockWidget*> docks_;
   VtkView* view3d_ = nullptr;
   QAction* full_detail_ = nullptr;  // View: full surface detail while scanning
+  PreviewDetail preview_;  // the surface's detail while scanning
   ExposurePlot* plot_ = nullptr;
   QComboBox* source_ = nullptr;
   class TonePanel* tone_panel_ = nullptr;
@@ -159,14 +165,23 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<sensors::HotplugMonitor> hotplug_;  // events come on OpenNI2's threads
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
   QLabel *reloc_hint_ = nullptr, *reloc_caption_ = nullptr;
-  QLabel *stages_ = nullptr, *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
+  QWidget* stages_ = nullptr;                                  // the stage times' grid
+  std::array<QLabel*, 7> stage_ms_{};                          // its six stages and the total
+  QLabel *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
+  // The status panel while scanning: a change of the tracking's state (a loss, a warning) at
+  // once, its figures (frame, times, memory) at most every kStatusMs (text no one can read
+  // at the scan's rate costs the window's thread a text layout a frame).
+  static constexpr int kStatusMs = 200;
+  qint64 status_ms_ = 0;
+  QString status_key_;
+  int reloc_hint_frame_ = -1;
   int frames_shown_ = 0;
   // What the window's own work cost during the session (the benchmark's breakdown): the 2-D
   // views' refreshes and the surfaces handed to the 3-D view, milliseconds of this thread's CPU.
   double views_ms_ = 0, mesh_handover_ms_ = 0;
   // The 2-D views' refresh while scanning: the window's thread under kWindowShare of the
   // machine (its other work, the 3-D view's redraws, counts against it too).
-  static constexpr double kWindowShare = 0.05;
+  static constexpr double kWindowShare = 0.03;
   DisplayPacer pacer_{kWindowShare, QThread::idealThreadCount()};
   bool scanning_ = false;
   int window_threads_ = 1;  // OpenMP threads of the window's thread when not scanning

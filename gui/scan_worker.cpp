@@ -30,10 +30,11 @@ std::unique_ptr<pipeline::FrameSource> OpenFrameSource(const std::string& spec) 
 
 void MeshWorker::Reset(const volume::VolumeOptions& o) { mesher_ = std::make_unique<mesh::IncrementalMesher>(o); }
 
-void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step) {
+void MeshWorker::Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step,
+                       int refresh_after) {
   std::shared_ptr<const mesh::Mesh> m;
   if (mesher_) {
-    mesher_->Apply(*changed, step);
+    mesher_->Apply(*changed, step, refresh_after);
     m = std::make_shared<const mesh::Mesh>(mesher_->Assemble(step));
   }
   busy = false;
@@ -95,9 +96,10 @@ void ScanWorker::RequestMesh(bool last) {
   mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
   mesh_frame_ = session_->frames() - 1;
   // The whole surface at a stop (last), else the detail chosen for a running scan.
-  const int step = last || full_detail_ ? 1 : 2;
+  const int step = last ? 1 : preview_step_.load();
+  const int refresh = step > 1 ? kPreviewRefresh : 0;
   QMetaObject::invokeMethod(
-      mesher_, [m = mesher_, changed, last, g = mesh_generation_, step] { m->Apply(changed, last, g, step); },
+      mesher_, [m = mesher_, changed, last, g = mesh_generation_, step, refresh] { m->Apply(changed, last, g, step, refresh); },
       Qt::QueuedConnection);
 }
 
@@ -242,6 +244,7 @@ void ScanWorker::Publish() {
   RequestMesh(true);  // the whole model (every brick is new to the mesher): meshUpdated follows
   if (!session_->reports().empty()) s->report = session_->reports().back();
   s->images.render = pipe.Render(pipe.pose());
+  s->has_images = true;
   FillScanState(*s);
   emit snapshot(std::move(s));
 }
@@ -397,9 +400,10 @@ void ScanWorker::Step() {
       s->reloc_hint_frame = pipe.relocaliser().entries()[std::size_t(k)].frame;
     }
     // The stage images on screen, at the display's rate (always on a scan's first and last).
-    if (settings_.images_min_interval_ms <= 0 || images_time_ms_ == 0 || last ||
-        now - images_time_ms_ >= settings_.images_min_interval_ms) {
+    const int images_ms = std::max(settings_.images_min_interval_ms, images_interval_ms_.load());
+    if (images_ms <= 0 || images_time_ms_ == 0 || last || now - images_time_ms_ >= images_ms) {
       s->images = pipe.DownloadViews(ShownViews());
+      s->has_images = true;
       images_time_ms_ = now;
     }
     FillScanState(*s);

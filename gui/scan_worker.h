@@ -42,8 +42,9 @@ struct ScanSettings {
   int mesh_every_frames = 1;
   int mesh_min_interval_ms = 400;
   // The stage images a snapshot carries (only those of views on screen, ScanWorker::
-  // SetShownViews) are copied at most this often (the display's rate; 0: every frame). The
-  // first and the last frame of a scan always carry them.
+  // SetShownViews) are copied at most this often (0: every frame), or at the window's rate
+  // where it asks for less (ScanWorker::SetImagesIntervalMs). The first and the last frame of
+  // a scan always carry them.
   int images_min_interval_ms = 40;
   // Autosave of the scan to a recovery file (io/project.h) while scanning: every this many
   // seconds (0: never).
@@ -82,8 +83,10 @@ class MeshWorker : public QObject {
   void Reset(const volume::VolumeOptions& o);
   // `generation`: the model the bricks came from (ScanWorker counts them), sent back with the
   // surface so that one meshed from a model since dropped is not shown.
-  // `step`: the surface's detail (mesh::IncrementalMesher: 1 every voxel, 2 a coarse preview).
-  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step);
+  // `step`: the surface's detail (mesh::IncrementalMesher: 1 every voxel, 2 or 4 a coarser
+  // preview); `refresh_after`: its bricks' refresh (IncrementalMesher::Apply).
+  void Apply(const std::shared_ptr<const volume::BrickSet>& changed, bool last, int generation, int step,
+             int refresh_after);
  signals:
   void meshReady(std::shared_ptr<const hdrf::mesh::Mesh> mesh, bool last, int generation);
 
@@ -103,6 +106,7 @@ struct Snapshot {
   int reloc_hint_frame = -1;
   pipeline::FrameViews images;       // radiance, confidence, filtered depth, NR, ray cast (those
                                      // shown, at the display's rate: may be empty)
+  bool has_images = false;           // `images` were taken with this frame (at the display's rate)
   PinholeCamera camera;
   std::vector<Pose> trajectory;      // every pose so far
   std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)
@@ -123,17 +127,23 @@ class ScanWorker : public QObject {
  public:
   ScanWorker();
   ~ScanWorker() override;
+  // How often the window takes the stage images while a scan runs (any thread; 0: as the
+  // settings say): snapshots in between carry none, so the scan copies no image no one sees.
+  void SetImagesIntervalMs(int ms) { images_interval_ms_ = ms; }
   bool running() const { return running_; }
   // Cancels an export in progress (any thread).
   void CancelExport() { cancel_export_ = true; }
   // The stage images the window shows now (any thread): snapshots carry only those.
   void SetShownViews(const pipeline::ViewSet& v);
   pipeline::ViewSet ShownViews() const;
-  // The surface's detail while a scan runs (any thread): false, a coarse preview from every
-  // other voxel (a quarter of the triangles: a redraw the software OpenGL of a machine without
-  // a GPU can afford twice a second); true, every voxel. When the scan stops, pauses or
-  // finishes the whole surface follows either way.
-  void SetFullDetailWhileScanning(bool full) { full_detail_ = full; }
+  // The surface's lattice while a scan runs (any thread): 1 every voxel, 2 every other (a
+  // quarter of the triangles), 4 every fourth (a sixteenth: for a software OpenGL that cannot
+  // redraw more twice a second). A preview's bricks already shown are re-meshed at most every
+  // kPreviewRefresh refreshes; new ones at once. When the scan stops, pauses or finishes the
+  // whole surface (every voxel) follows either way.
+  static constexpr int kPreviewRefresh = 4;
+  void SetPreviewStep(int step) { preview_step_ = step == 1 || step == 4 ? step : 2; }
+  int preview_step() const { return preview_step_; }
   // Clears a previous cancel: call (from any thread) before queueing ExportAsset, so that a
   // cancel pressed before the worker starts the export still counts.
   void ArmExport() { cancel_export_ = false; }
@@ -235,7 +245,8 @@ class ScanWorker : public QObject {
   QThread* mesh_thread_ = nullptr;
   MeshWorker* mesher_ = nullptr;    // lives on mesh_thread_
   std::atomic<unsigned> shown_views_{0x1f};  // ViewSet as bits
-  std::atomic<bool> full_detail_{false};
+  std::atomic<int> preview_step_{2};
+  std::atomic<int> images_interval_ms_{0};
   bool running_ = false;
   std::atomic<bool> cancel_export_{false};
 };

@@ -303,7 +303,8 @@ void VtkView::Draw() {
   d_->window->Render();
   drawing_ = false;
   ReadBack();
-  redraw_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  last_redraw_wall_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  redraw_ms_ += last_redraw_wall_ms_;
   ++redraws_;
   last_redraw_ms_ = QDateTime::currentMSecsSinceEpoch();
   dirty_ = false;

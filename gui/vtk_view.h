@@ -47,6 +47,7 @@ class VtkView : public QWidget {
   void SetTrajectoryRefreshMs(int ms) { trajectory_refresh_ms_ = ms; }
   int redraws() const { return redraws_; }  // scene redraws so far
   double redraw_ms() const { return redraw_ms_; }  // their wall time in all (software GL's threads included)
+  double last_redraw_ms() const { return last_redraw_wall_ms_; }  // the latest one's
   // The scene drawn now (for tests and screenshots).
   QImage Capture();
   // Why the view cannot draw (no usable OpenGL 3.2), or empty.
@@ -84,7 +85,7 @@ class VtkView : public QWidget {
   bool read_pending_ = false;  // VTK drew a frame (the interactor) not yet read back
   bool dirty_ = true;
   int trajectory_refresh_ms_ = 1000, redraws_ = 0;
-  double redraw_ms_ = 0;
+  double redraw_ms_ = 0, last_redraw_wall_ms_ = 0;
   bool redraw_pending_ = false;
   qint64 last_redraw_ms_ = 0;
   bool first_mesh_ = true;

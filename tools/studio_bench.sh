@@ -31,8 +31,8 @@ done
 python3 - "$TMP" "${REPEAT:-1}" "$SOURCE" "$DEVICE" <<'PY'
 import json, statistics, sys
 tmp, n, source, device = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
-print("| run | source | device | frames | CLI frames/s | studio frames/s | studio / CLI | 3-D surface updates/s | studio frames shown |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("| run | source | device | frames | CLI frames/s | studio frames/s | studio / CLI | 3-D surface updates/s | preview lattice | studio frames shown |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 ratios, runs = [], []
 for i in range(1, n + 1):
     cli = json.load(open(f"{tmp}/cli{i}/report.json"))
@@ -41,7 +41,7 @@ for i in range(1, n + 1):
     ratios.append(s / c)
     runs.append(st)
     print(f"| {i} | {source} | {device} | {cli['frames']} | {c:.1f} | {s:.1f} | {100 * s / c:.0f} % | "
-          f"{st['mesh_updates_per_s']:.1f} | {st['frames_shown']} |")
+          f"{st['mesh_updates_per_s']:.1f} | {st.get('display', {}).get('preview_step', '-')} | {st['frames_shown']} |")
 if n > 1:
     print(f"\nmedian studio / CLI over {n} pairs: {100 * statistics.median(ratios):.0f} %")
 print()

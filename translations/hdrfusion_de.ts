@@ -1858,8 +1858,12 @@ Open it to continue or export it?</source>
         <translation>Volle Oberflächendetails beim Scannen</translation>
     </message>
     <message>
-        <source>Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, a quarter of the triangles), which leaves more of the processor to the scan; the whole surface follows when the scan stops</source>
-        <translation>Aus: Während ein Scan läuft, zeigt die 3-D-Ansicht eine gröbere Oberfläche (aus jedem zweiten Voxel, ein Viertel der Dreiecke), die dem Scan mehr vom Prozessor lässt; die ganze Oberfläche folgt, wenn der Scan anhält</translation>
+        <source>Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, a quarter of the triangles; every fourth where the display cannot draw that quickly), which leaves more of the processor to the scan; the whole surface follows when the scan stops</source>
+        <translation>Aus: Während ein Scan läuft, zeigt die 3-D-Ansicht eine gröbere Oberfläche (aus jedem zweiten Voxel, ein Viertel der Dreiecke; aus jedem vierten, wo die Anzeige nicht so schnell zeichnen kann), die dem Scan mehr vom Prozessor lässt; die ganze Oberfläche folgt, wenn der Scan anhält</translation>
+    </message>
+    <message>
+        <source>%L1 ms</source>
+        <translation>%L1 ms</translation>
     </message>
 </context>
 <context>

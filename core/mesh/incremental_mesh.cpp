@@ -13,7 +13,7 @@ namespace hdrf::mesh {
 
 namespace {
 
-// The surface of one brick's cubes at a step (512 cubes at step 1, 64 at step 2), as Extract
+// The surface of one brick's cubes at a step (512 cubes at step 1, 64 at step 2, 8 at 4), as Extract
 // (mesh.cpp) builds the whole model's at step 1: the same cube triangles, vertices and
 // orientation, with the vertices this brick's cubes use.
 template <typename V>
@@ -33,21 +33,24 @@ Mesh MeshBrick(const volume::VolumeView<V>& view, const std::array<int, 3>& b, i
 }
 
 void CheckStep(int step) {
-  if (step < 1 || step > IncrementalMesher::kSteps)
-    throw Error("incremental mesher: step " + std::to_string(step) + " (1 or 2)");
+  if (step != 1 && step != 2 && step != 4)
+    throw Error("incremental mesher: step " + std::to_string(step) + " (1, 2 or 4)");
+}
+
+std::size_t LevelIndex(int step) {
+  CheckStep(step);
+  return step == 4 ? 2 : std::size_t(step - 1);
 }
 
 }  // namespace
 
 IncrementalMesher::IncrementalMesher(const volume::VolumeOptions& o) : mirror_(o) {}
 
-const IncrementalMesher::Level& IncrementalMesher::level(int step) const {
-  CheckStep(step);
-  return levels_[std::size_t(step - 1)];
-}
+const IncrementalMesher::Level& IncrementalMesher::level(int step) const { return levels_[LevelIndex(step)]; }
+IncrementalMesher::Level& IncrementalMesher::level(int step) { return levels_[LevelIndex(step)]; }
 
-std::size_t IncrementalMesher::Apply(const volume::BrickSet& changed, int step) {
-  CheckStep(step);
+std::size_t IncrementalMesher::Apply(const volume::BrickSet& changed, int step, int refresh_after) {
+  Level& l = level(step);
   mirror_.Store(changed);
   // The changed bricks and their neighbours that the mirror holds: stale at every step.
   for (const auto& c : changed.coords)
@@ -56,12 +59,24 @@ std::size_t IncrementalMesher::Apply(const volume::BrickSet& changed, int step) 
         for (int dx = -1; dx <= 1; ++dx) {
           const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
           if (!volume::BrickInRange(x, y, z) || !mirror_.BrickAllocated(x, y, z)) continue;
-          for (Level& l : levels_) l.stale.insert(volume::BrickKey(x, y, z));
+          for (Level& each : levels_) each.stale.insert(volume::BrickKey(x, y, z));
         }
-  Level& l = levels_[std::size_t(step - 1)];
-  std::vector<std::uint64_t> todo(l.stale.begin(), l.stale.end());
-  l.stale.clear();
+  ++l.calls;
+  std::vector<std::uint64_t> todo;
+  todo.reserve(l.stale.size());
+  for (auto it = l.stale.begin(); it != l.stale.end();) {
+    if (refresh_after > 0 && l.pieces.count(*it)) {
+      const auto at = l.meshed_at.find(*it);
+      if (at != l.meshed_at.end() && l.calls - at->second < std::uint32_t(refresh_after)) {
+        ++it;  // its surface is shown and was meshed lately: waits
+        continue;
+      }
+    }
+    todo.push_back(*it);
+    it = l.stale.erase(it);
+  }
   std::sort(todo.begin(), todo.end());
+  for (const std::uint64_t k : todo) l.meshed_at[k] = l.calls;
   std::vector<Mesh> meshed(todo.size());
   volume::VisitEncoding(mirror_.options().encoding, [&](auto tag) {
     const volume::VolumeView<decltype(tag)> view = mirror_.view<decltype(tag)>();

@@ -22,6 +22,7 @@
 #include <fstream>
 
 #include "gui/display_pacer.h"
+#include "gui/preview_detail.h"
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
 #include "gui/scan_worker.h"
@@ -46,6 +47,26 @@ float SrgbCurve(float x) { return x <= 0.0031308f ? 12.92f * x : 1.055f * std::p
 // The views' pacing: a refresh that costs the window thread more than its share of the
 // machine spaces the refreshes out until the share is met; a cheap one follows every frame;
 // never faster than 40 ms or slower than a second; more cores, a larger share.
+// The preview coarsens after three slow redraws in a row, not after one (a shader compiled)
+// nor after slow ones with a fast one between; full detail stays full; a new scan starts at
+// every other voxel again.
+TEST(PreviewDetail, CoarsensOnASlowDisplayOnly) {
+  PreviewDetail d;
+  EXPECT_EQ(d.Start(false), 2);
+  const double slow = PreviewDetail::kSlowRedrawMs + 1, fast = PreviewDetail::kSlowRedrawMs / 3;
+  EXPECT_EQ(d.Redrawn(slow), 2);
+  EXPECT_EQ(d.Redrawn(slow), 2);
+  EXPECT_EQ(d.Redrawn(fast), 2);
+  EXPECT_EQ(d.Redrawn(slow), 2);
+  EXPECT_EQ(d.Redrawn(slow), 2);
+  EXPECT_EQ(d.Redrawn(slow), 4);
+  EXPECT_EQ(d.Redrawn(fast), 4);  // for the rest of the scan
+  EXPECT_EQ(d.Start(false), 2);
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(d.Redrawn(fast), 2);
+  EXPECT_EQ(d.Start(true), 1);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(d.Redrawn(slow), 1);
+}
+
 TEST(DisplayPacer, KeepsTheWindowsShareOfTheMachine) {
   // Simulated: each refresh costs `cost` ms of the thread's CPU, plus `fixed` ms a second of
   // other window work (the 3-D view); the window asks every 40 ms.

@@ -320,5 +320,62 @@ TEST(IncrementalMesh, APreviewAtStepTwoLiesOnTheSurfaceAndTheWholeFollows) {
   test::ExpectErrorContaining([&] { mesher.Apply(volume::BrickSet{}, 3); }, {"step 3"});
 }
 
+// A preview's bricks already shown wait their turn (refresh_after): fewer bricks meshed while
+// the scan runs, new ones at once, and once the changes stop the same surface as meshing every
+// brick every time. Every fourth voxel: a sixteenth-size lattice still on the surface.
+TEST(IncrementalMesh, PreviewBricksWaitTheirTurnAndCatchUp) {
+  const auto frames = Inputs(40);
+  PipelineOptions o;
+  ScanSession s(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  mesh::IncrementalMesher each(o.volume), waiting(o.volume), coarse(o.volume);
+  std::size_t meshed_each = 0, meshed_waiting = 0;
+  double least_pieces_share = 1;  // the waiting preview's bricks with surface against the other's
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    s.Process(frames[i]);
+    if (i % 2 == 1) {
+      const volume::BrickSet changed = s.pipeline().ChangedBricks();
+      meshed_each += each.Apply(changed, 2);
+      meshed_waiting += waiting.Apply(changed, 2, 4);
+      coarse.Apply(changed, 4, 4);
+      least_pieces_share = std::min(least_pieces_share, double(waiting.pieces(2)) / double(std::max<std::size_t>(1, each.pieces(2))));
+    }
+  }
+  // New bricks are not held back: the waiting preview always shows (nearly) every brick with
+  // surface that meshing every brick shows.
+  ASSERT_GT(each.pieces(2), 100u);
+  EXPECT_GT(least_pieces_share, 0.999);
+  // The refinement of bricks already shown costs a fraction.
+  EXPECT_LT(double(meshed_waiting), 0.7 * double(meshed_each));
+  EXPECT_GT(waiting.stale(2), 0u);
+  // The changes stopped: the waiting bricks follow within refresh_after calls, then the same
+  // surface as meshing every brick every time.
+  for (int k = 0; k < 4; ++k) waiting.Apply(volume::BrickSet{}, 2, 4);
+  EXPECT_EQ(waiting.stale(2), 0u);
+  const mesh::Mesh a = each.Assemble(2), b = waiting.Assemble(2);
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  EXPECT_TRUE(std::equal(a.position.begin(), a.position.end(), b.position.begin(),
+                         [](const Float3& p, const Float3& q) { return p.x == q.x && p.y == q.y && p.z == q.z; }));
+  // Every fourth voxel: far fewer triangles than every other, still on the surface.
+  for (int k = 0; k < 4; ++k) coarse.Apply(volume::BrickSet{}, 4, 4);
+  const mesh::Mesh c = coarse.Assemble(4);
+  const double share = double(c.triangles.size()) / double(a.triangles.size());
+  EXPECT_GT(share, 0.08);
+  EXPECT_LT(share, 0.3);
+  const volume::Volume& model = s.pipeline().DownloadVolume();
+  const float vs = o.volume.voxel_m, trunc = o.volume.truncation_m();
+  std::vector<double> off;
+  for (const Float3& p : c.position) {
+    float f = 0;
+    if (model.SampleTsdf(p, &f)) off.push_back(std::fabs(double(f) * trunc / vs));
+  }
+  ASSERT_GT(off.size(), c.position.size() * 9 / 10);
+  std::sort(off.begin(), off.end());
+  const double median = off[off.size() / 2];
+  EXPECT_LT(median, 0.5);
+  std::printf("bricks meshed: %zu each time, %zu waiting their turn (least share of pieces %.3f); step 4: %.2f of "
+              "step 2's triangles, |TSDF| median %.3f voxels\n",
+              meshed_each, meshed_waiting, least_pieces_share, share, median);
+}
+
 }  // namespace
 }  // namespace hdrf::pipeline
