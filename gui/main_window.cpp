@@ -202,6 +202,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
     worker_->SetImagesIntervalMs(0);  // every frame's until the pacer has measured
     // Each scan's preview starts at every other voxel (UpdateMesh coarsens it on a slow display).
     if (running) worker_->SetPreviewStep(preview_.Start(full_detail_->isChecked()));
+    view3d_->SetRenderScale(running ? preview_.render_scale() : 1.0);  // stopped: every pixel
     statusBar()->showMessage(msg);
     start_->setEnabled(!running);
     pause_->setEnabled(running);
@@ -825,8 +826,10 @@ void MainWindow::UpdateMesh() {
   if (!mesh_latest_ || mesh_latest_ == mesh_shown_) return;
   if (mesh_shown_ && now - mesh_time_ms_ < 300 && !mesh_latest_last_) return;
   // How long the display took to redraw the preview shown: a slow one is coarsened.
-  if (scanning_ && mesh_shown_ && !mesh_shown_last_ && view3d_->redraws() > 0)
+  if (scanning_ && mesh_shown_ && !mesh_shown_last_ && view3d_->redraws() > 0) {
     worker_->SetPreviewStep(preview_.Redrawn(view3d_->last_redraw_ms()));
+    view3d_->SetRenderScale(preview_.render_scale());
+  }
   mesh_shown_ = mesh_latest_;
   mesh_shown_last_ = mesh_latest_last_;
   mesh_time_ms_ = now;

@@ -26,6 +26,8 @@ class PreviewDetail {
     return step_;
   }
   int step() const { return step_; }
+  // The 3-D view's rendered pixels on a side while scanning: half on a slow display.
+  double render_scale() const { return step_ == 4 ? 0.5 : 1.0; }
 
  private:
   int step_ = 2, slow_ = 0;

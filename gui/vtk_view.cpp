@@ -1,5 +1,6 @@
 #include "gui/vtk_view.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <vtkActor.h>
@@ -289,7 +290,7 @@ void VtkView::Cleanup() {
 
 void VtkView::resizeEvent(QResizeEvent*) {
   if (!context_) return;
-  const qreal r = devicePixelRatioF();
+  const qreal r = RenderRatio();
   const int w = std::max(1, int(width() * r)), h = std::max(1, int(height() * r));
   d_->window->SetSize(w, h);
   d_->interactor->UpdateSize(w, h);
@@ -326,7 +327,7 @@ void VtkView::ReadBack() {
   st->vtkglColorMask(true, true, true, true);
   image_ = fbo_->toImage(false);
   st->vtkglBindFramebuffer(GL_FRAMEBUFFER, 0);
-  image_.setDevicePixelRatio(devicePixelRatioF());
+  image_.setDevicePixelRatio(RenderRatio());
   read_pending_ = false;
 }
 
@@ -344,6 +345,7 @@ void VtkView::paintEvent(QPaintEvent*) {
     p.fillRect(rect(), QColor(31, 31, 36));
     return;
   }
+  if (scale_ < 1) p.setRenderHint(QPainter::SmoothPixmapTransform);
   p.drawImage(QPoint(0, 0), image_);
 }
 
@@ -469,8 +471,18 @@ QImage VtkView::Capture() {
   return shot;
 }
 
+void VtkView::SetRenderScale(double scale) {
+  scale = std::clamp(scale, 0.25, 1.0);
+  if (scale == scale_) return;
+  scale_ = scale;
+  resizeEvent(nullptr);
+  update();
+}
+
+qreal VtkView::RenderRatio() const { return devicePixelRatioF() * scale_; }
+
 void VtkView::SetEventInfo(QMouseEvent* e) {
-  const qreal r = devicePixelRatioF();
+  const qreal r = RenderRatio();
   d_->interactor->SetEventInformationFlipY(int(e->position().x() * r), int(e->position().y() * r),
                                            (e->modifiers() & Qt::ControlModifier) ? 1 : 0,
                                            (e->modifiers() & Qt::ShiftModifier) ? 1 : 0);
@@ -499,7 +511,7 @@ void VtkView::mouseMoveEvent(QMouseEvent* e) {
   d_->interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
 }
 void VtkView::wheelEvent(QWheelEvent* e) {
-  const qreal r = devicePixelRatioF();
+  const qreal r = RenderRatio();
   d_->interactor->SetEventInformationFlipY(int(e->position().x() * r), int(e->position().y() * r));
   d_->interactor->InvokeEvent(e->angleDelta().y() > 0 ? vtkCommand::MouseWheelForwardEvent
                                                        : vtkCommand::MouseWheelBackwardEvent);

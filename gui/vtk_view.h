@@ -45,6 +45,10 @@ class VtkView : public QWidget {
   // most this often (a redraw of a large surface is the costliest thing the window does;
   // a new surface, a reset view and the mouse redraw at once).
   void SetTrajectoryRefreshMs(int ms) { trajectory_refresh_ms_ = ms; }
+  // Renders at this share of the widget's pixels on a side (0.25 .. 1), the image scaled up
+  // when painted: a software OpenGL's pixel work drops with its square.
+  void SetRenderScale(double scale);
+  double render_scale() const { return scale_; }
   int redraws() const { return redraws_; }  // scene redraws so far
   double redraw_ms() const { return redraw_ms_; }  // their wall time in all (software GL's threads included)
   double last_redraw_ms() const { return last_redraw_wall_ms_; }  // the latest one's
@@ -86,6 +90,8 @@ class VtkView : public QWidget {
   bool dirty_ = true;
   int trajectory_refresh_ms_ = 1000, redraws_ = 0;
   double redraw_ms_ = 0, last_redraw_wall_ms_ = 0;
+  double scale_ = 1;
+  qreal RenderRatio() const;  // rendered pixels per logical pixel
   bool redraw_pending_ = false;
   qint64 last_redraw_ms_ = 0;
   bool first_mesh_ = true;

@@ -8,9 +8,10 @@
 //
 // A coarser surface for a view that must redraw cheaply while the scan goes on: with step 2
 // each piece is meshed from every other voxel (cubes two voxels on a side: an eighth of the
-// cubes, about a quarter of the triangles). The pieces of each step are kept apart, and a
-// brick changed since its piece of a step was meshed is meshed again when that step is next
-// asked for (a scan previewed at step 2 and shown whole at step 1 when it stops).
+// cubes, about a quarter of the triangles), with step 4 from every fourth (a sixteenth of
+// the triangles). The pieces of each step are kept apart, and a brick changed since its piece
+// of a step was meshed is meshed again when that step is next asked for (a scan previewed at
+// step 2 or 4 and shown whole at step 1 when it stops).
 #pragma once
 
 #include <array>
