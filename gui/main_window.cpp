@@ -846,8 +846,10 @@ void MainWindow::Render(bool now) {
   const auto s = latest_;
   if (!s || s == shown_) return;
   const double t0 = ThreadCpuMs();
-  // The status (tracking health, frame, timings, memory) follows every snapshot: a loss is
-  // shown at once. The views, while a scan runs, at the pacer's rate (the scan keeps the cores).
+  // The status (tracking health, frame, timings, memory): a change of the tracking's state
+  // (StatusKey) with the snapshot that brings it, so a loss shows at once; its figures at most
+  // every kStatusMs while scanning. The views, while a scan runs, at the pacer's rate (the
+  // scan keeps the cores).
   const qint64 wall = QDateTime::currentMSecsSinceEpoch();
   if (!s->preview && s != status_shown_ &&
       (now || !scanning_ || wall - status_ms_ >= kStatusMs || StatusKey(*s) != status_key_)) {
