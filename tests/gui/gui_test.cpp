@@ -568,33 +568,39 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
 }
 
 // Snapshots carry only the stage images of the views on screen, and those at most at the
-// display's rate; the first and the last frame always carry them.
+// display's rate (the settings' or, where it asks for less, the window's); the first and the
+// last frame always carry them, and say so.
 TEST(ScanWorker, SnapshotsCarryOnlyTheShownImagesAtTheDisplayRate) {
-  WorkerOnThread wt;
-  std::vector<std::shared_ptr<const Snapshot>> got;
-  QObject ctx;
-  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
-  QSignalSpy finished(wt.w, &ScanWorker::finished);
-  ScanSettings s;
-  s.source = "synthetic:frames=10,size=160x120,ae=flicker";
-  s.pipeline.volume.voxel_m = 0.047f;
-  s.images_min_interval_ms = 600000;  // none between the first and the last frame
-  pipeline::ViewSet shown;
-  shown.confidence = shown.nr = shown.depth = false;  // the radiance and model views only
-  wt.w->SetShownViews(shown);
-  wt.Call([&wt, s] { wt.w->Configure(s); });
-  wt.Call([&wt] { wt.w->Start(); });
-  ASSERT_TRUE(Arrived(finished, 120000));
-  QCoreApplication::processEvents();
-  ASSERT_EQ(got.size(), 10u);
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    const bool carried = i == 0 || i + 1 == got.size();
-    EXPECT_EQ(got[i]->images.radiance.width(), carried ? 160 : 0) << i;
-    EXPECT_EQ(got[i]->images.render.radiance.width(), carried ? 160 : 0) << i;
-    EXPECT_EQ(got[i]->images.confidence.width(), 0) << i;
-    EXPECT_EQ(got[i]->images.nr.width(), 0) << i;
-    EXPECT_EQ(got[i]->images.depth.width(), 0) << i;
-    EXPECT_EQ(got[i]->color.width(), 160) << i;  // the colour comes with every frame
+  for (const bool window_asks : {false, true}) {
+    SCOPED_TRACE(window_asks ? "the window asks for images every 600 s" : "the settings say every 600 s");
+    WorkerOnThread wt;
+    std::vector<std::shared_ptr<const Snapshot>> got;
+    QObject ctx;
+    QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
+    QSignalSpy finished(wt.w, &ScanWorker::finished);
+    ScanSettings s;
+    s.source = "synthetic:frames=10,size=160x120,ae=flicker";
+    s.pipeline.volume.voxel_m = 0.047f;
+    s.images_min_interval_ms = window_asks ? 0 : 600000;  // none between the first and the last frame
+    if (window_asks) wt.w->SetImagesIntervalMs(600000);
+    pipeline::ViewSet shown;
+    shown.confidence = shown.nr = shown.depth = false;  // the radiance and model views only
+    wt.w->SetShownViews(shown);
+    wt.Call([&wt, s] { wt.w->Configure(s); });
+    wt.Call([&wt] { wt.w->Start(); });
+    ASSERT_TRUE(Arrived(finished, 120000));
+    QCoreApplication::processEvents();
+    ASSERT_EQ(got.size(), 10u);
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      const bool carried = i == 0 || i + 1 == got.size();
+      EXPECT_EQ(got[i]->has_images, carried) << i;
+      EXPECT_EQ(got[i]->images.radiance.width(), carried ? 160 : 0) << i;
+      EXPECT_EQ(got[i]->images.render.radiance.width(), carried ? 160 : 0) << i;
+      EXPECT_EQ(got[i]->images.confidence.width(), 0) << i;
+      EXPECT_EQ(got[i]->images.nr.width(), 0) << i;
+      EXPECT_EQ(got[i]->images.depth.width(), 0) << i;
+      EXPECT_EQ(got[i]->color.width(), 160) << i;  // the colour comes with every frame
+    }
   }
 }
 
