@@ -137,9 +137,9 @@ class ScanWorker : public QObject {
   void SetShownViews(const pipeline::ViewSet& v);
   pipeline::ViewSet ShownViews() const;
   // The surface's lattice while a scan runs (any thread): 1 every voxel, 2 every other (a
-  // quarter of the triangles), 4 every fourth (a sixteenth: for a software OpenGL that cannot
-  // redraw more twice a second). A preview's bricks already shown are re-meshed at most every
-  // kPreviewRefresh refreshes; new ones at once. When the scan stops, pauses or finishes the
+  // quarter of the triangles), 4 every fourth (a sixteenth: for a display that cannot redraw
+  // more than that twice a second, gui::PreviewDetail). In a preview, a brick whose surface is
+  // shown is re-meshed at most every kPreviewRefresh refreshes; one without surface yet at once. When the scan stops, pauses or finishes the
   // whole surface (every voxel) follows either way.
   static constexpr int kPreviewRefresh = 4;
   void SetPreviewStep(int step) { preview_step_ = step == 1 || step == 4 ? step : 2; }

@@ -478,6 +478,22 @@ class WorkerOnThread {
   void Call(F f) {
     QMetaObject::invokeMethod(w, f, Qt::QueuedConnection);
   }
+  // Configures `s`, scans it to its end and returns every snapshot published, in order
+  // (empty, with a failure recorded, if the scan did not finish within two minutes).
+  std::vector<std::shared_ptr<const Snapshot>> ScanToEnd(const ScanSettings& s) {
+    std::vector<std::shared_ptr<const Snapshot>> got;
+    QObject ctx;
+    QObject::connect(w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> x) { got.push_back(x); });
+    QSignalSpy finished(w, &ScanWorker::finished);
+    Call([this, s] { w->Configure(s); });
+    Call([this] { w->Start(); });
+    if (!Arrived(finished, 120000)) {
+      ADD_FAILURE() << "the scan of " << s.source << " did not finish";
+      return {};
+    }
+    QCoreApplication::processEvents();
+    return got;
+  }
   QThread t;
   ScanWorker* w;
 };
@@ -527,22 +543,17 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
 
 TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   WorkerOnThread wt;
-  std::vector<std::shared_ptr<const Snapshot>> got;
   std::vector<std::pair<std::shared_ptr<const mesh::Mesh>, bool>> meshes;
   QObject ctx;
-  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
   QObject::connect(wt.w, &ScanWorker::meshUpdated, &ctx,
                    [&](std::shared_ptr<const mesh::Mesh> m, bool last) { meshes.push_back({m, last}); });
-  QSignalSpy finished(wt.w, &ScanWorker::finished);
   ScanSettings s;
   s.source = "synthetic:frames=12,size=160x120,ae=flicker";
   s.pipeline.volume.voxel_m = 0.047f;
   s.mesh_every_frames = 5;
   s.mesh_min_interval_ms = 0;
   s.images_min_interval_ms = 0;  // every frame's images
-  wt.Call([&wt, s] { wt.w->Configure(s); });
-  wt.Call([&wt] { wt.w->Start(); });
-  ASSERT_TRUE(Arrived(finished, 120000));
+  const auto got = wt.ScanToEnd(s);
   ASSERT_TRUE(test::WaitUntil([&] { return !meshes.empty() && meshes.back().second; }, 60000)) << "!meshes.empty() && meshes.back().second";
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
@@ -574,10 +585,6 @@ TEST(ScanWorker, SnapshotsCarryOnlyTheShownImagesAtTheDisplayRate) {
   for (const bool window_asks : {false, true}) {
     SCOPED_TRACE(window_asks ? "the window asks for images every 600 s" : "the settings say every 600 s");
     WorkerOnThread wt;
-    std::vector<std::shared_ptr<const Snapshot>> got;
-    QObject ctx;
-    QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
-    QSignalSpy finished(wt.w, &ScanWorker::finished);
     ScanSettings s;
     s.source = "synthetic:frames=10,size=160x120,ae=flicker";
     s.pipeline.volume.voxel_m = 0.047f;
@@ -586,10 +593,7 @@ TEST(ScanWorker, SnapshotsCarryOnlyTheShownImagesAtTheDisplayRate) {
     pipeline::ViewSet shown;
     shown.confidence = shown.nr = shown.depth = false;  // the radiance and model views only
     wt.w->SetShownViews(shown);
-    wt.Call([&wt, s] { wt.w->Configure(s); });
-    wt.Call([&wt] { wt.w->Start(); });
-    ASSERT_TRUE(Arrived(finished, 120000));
-    QCoreApplication::processEvents();
+    const auto got = wt.ScanToEnd(s);
     ASSERT_EQ(got.size(), 10u);
     for (std::size_t i = 0; i < got.size(); ++i) {
       const bool carried = i == 0 || i + 1 == got.size();
@@ -674,18 +678,11 @@ TEST(ScanWorker, ACorruptFramePausesWithAMessageAndKeepsTheModel) {
 // scan goes on to the end, and the model it holds is kept and exports.
 TEST(ScanWorker, ABudgetReachedIsReportedAndTheModelIsKept) {
   WorkerOnThread wt;
-  std::vector<std::shared_ptr<const Snapshot>> got;
-  QObject ctx;
-  QObject::connect(wt.w, &ScanWorker::snapshot, &ctx, [&](std::shared_ptr<const Snapshot> s) { got.push_back(s); });
-  QSignalSpy finished(wt.w, &ScanWorker::finished);
   ScanSettings s;
   s.source = "synthetic:frames=20,size=160x120,ae=flicker";
   s.pipeline.volume.max_memory_mb = 2;
   s.autosave_s = 0;
-  wt.Call([&wt, s] { wt.w->Configure(s); });
-  wt.Call([&wt] { wt.w->Start(); });
-  ASSERT_TRUE(Arrived(finished, 120000));
-  QCoreApplication::processEvents();
+  const auto got = wt.ScanToEnd(s);
   ASSERT_EQ(got.size(), 20u);
   const Snapshot& last = *got.back();
   EXPECT_NE(last.volume_full.find("memory budget of 2 MiB"), std::string::npos) << last.volume_full;

@@ -61,6 +61,20 @@ void FreshSettings() {
   std::filesystem::remove_all(io::RecoveryFolder(), ec);
 }
 
+// A window that starts scanning `source` at once and pauses after `frames` (0: its end).
+StudioOptions AutoScan(const QString& source, int frames = 0) {
+  StudioOptions o;
+  o.source = source;
+  o.frames = frames;
+  o.autostart = true;
+  return o;
+}
+// Shown at a desktop size.
+void ShowOnDesktop(MainWindow& w) {
+  w.resize(1400, 900);
+  w.show();
+}
+
 TEST(StudioWindow, EveryViewIsADockThatCanBeClosedAndRestored) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
@@ -107,13 +121,8 @@ TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
   {
-    StudioOptions o;
-    o.source = "synthetic:frames=15,size=160x120,ae=flicker";
-    o.frames = 15;
-    o.autostart = true;
-    MainWindow w(o);
-    w.resize(1400, 900);
-    w.show();
+    MainWindow w(AutoScan("synthetic:frames=15,size=160x120,ae=flicker", 15));
+    ShowOnDesktop(w);
     ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 0 && w.health_text().contains("Tracking"); }, 120000)) << "w.frames_shown() > 0 && w.health_text().contains('Tracking')";
     ASSERT_TRUE(test::WaitUntil([&] { return w.view("model_radiance")->DistinctLevels() > 8; }, 120000)) << "w.view('model_radiance')->DistinctLevels() > 8";
     for (const char* k : {"colour", "depth", "radiance", "nr", "confidence", "model_radiance", "model_normals"}) {
@@ -140,15 +149,10 @@ TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {
 TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
-  StudioOptions o;
   // Long enough that the scan still runs after the three switches (the views refresh at the
   // pacer's rate while it does, down to once a second for a dear operator).
-  o.source = "synthetic:frames=2000,size=160x120,ae=flicker";
-  o.frames = 2000;
-  o.autostart = true;
-  MainWindow w(o);
-  w.resize(1400, 900);
-  w.show();
+  MainWindow w(AutoScan("synthetic:frames=2000,size=160x120,ae=flicker", 2000));
+  ShowOnDesktop(w);
   ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 3 && w.view("model_radiance")->DistinctLevels() > 8; }, 120000));
   auto* op = w.findChild<QComboBox*>("tone_operator");
   ASSERT_NE(op, nullptr);
@@ -176,13 +180,8 @@ TEST(StudioWindow, SwitchingToneOperatorLiveKeepsTheScanRunning) {
 TEST(StudioWindow, The3DViewPreviewsWhileScanningAndFollowsTheMouse) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
-  StudioOptions o;
-  o.source = "synthetic:frames=40,size=160x120,ae=flicker";
-  o.frames = 40;
-  o.autostart = true;
-  MainWindow w(o);
-  w.resize(1400, 900);
-  w.show();
+  MainWindow w(AutoScan("synthetic:frames=40,size=160x120,ae=flicker", 40));
+  ShowOnDesktop(w);
   std::size_t preview = 0;
   QElapsedTimer t;
   t.start();
@@ -225,13 +224,8 @@ TEST(StudioWindow, The3DViewPreviewsWhileScanningAndFollowsTheMouse) {
 TEST(StudioWindow, ExportDialogWritesTexturedAssetsWithAPreviewAndCancels) {
   if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
   FreshSettings();
-  StudioOptions o;
-  o.source = "synthetic:frames=40,size=160x120";
-  o.frames = 40;
-  o.autostart = true;
-  MainWindow w(o);
-  w.resize(1400, 900);
-  w.show();
+  MainWindow w(AutoScan("synthetic:frames=40,size=160x120", 40));
+  ShowOnDesktop(w);
   QElapsedTimer clock;
   clock.start();
   ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && w.latest()->report.index >= 35; }, 120000))
@@ -310,8 +304,7 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
     o.project = saved;
     o.offer_recovery = false;
     MainWindow w(o);
-    w.resize(1400, 900);
-    w.show();
+    ShowOnDesktop(w);
     ASSERT_TRUE(test::WaitUntil([&] { return w.latest() && int(w.latest()->trajectory.size()) == saved_frames; }, 60000))
         << w.error_text().toStdString();
     ASSERT_TRUE(test::WaitUntil([&] { return w.view3d()->mesh_triangles() > 1000; }, 60000));
@@ -340,8 +333,7 @@ TEST(StudioWindow, SavesOpensAndContinuesAProjectAndOffersARecoveredScan) {
   {
     StudioOptions o;
     MainWindow w(o);
-    w.resize(1400, 900);
-    w.show();
+    ShowOnDesktop(w);
     ASSERT_TRUE(test::WaitUntil([&] { return w.recovery_offer() != nullptr; }, 20000));
     QMessageBox* box = w.recovery_offer();
     EXPECT_TRUE(box->text().contains(QString::fromStdString(found.front().string())));
@@ -396,12 +388,8 @@ TEST(StudioWindow, ALostScanSaysSoAndShowsWhereToPointTheCamera) {
       writer.Add(f.timestamp, f.color, &f.depth, f.exposure_ms, f.T_world_camera, nullptr);
     }
   }
-  StudioOptions o;
-  o.source = QString::fromStdString(seq.string());
-  o.autostart = true;
-  MainWindow w(o);
-  w.resize(1400, 900);
-  w.show();
+  MainWindow w(AutoScan(QString::fromStdString(seq.string())));
+  ShowOnDesktop(w);
   ASSERT_TRUE(test::WaitUntil([&] { return w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30; }, 120000)) << "w.frames_shown() > 0 && w.latest() && w.latest()->report.index >= 30";
   EXPECT_TRUE(w.health_text().contains("TRACKING LOST")) << w.health_text().toStdString();
   EXPECT_TRUE(w.health_text().contains("no correspondences")) << w.health_text().toStdString();

@@ -75,6 +75,19 @@ std::vector<FrameInput> Inputs(int n) {
   return in;
 }
 
+// |TSDF| of the model at each vertex, in voxels, sorted (vertices outside observed voxels left out).
+std::vector<double> TsdfAtVertices(const volume::Volume& model, const volume::VolumeOptions& o,
+                                   const std::vector<Float3>& vertices) {
+  const float vs = o.voxel_m, trunc = o.truncation_m();
+  std::vector<double> off;
+  for (const Float3& p : vertices) {
+    float f = 0;
+    if (model.SampleTsdf(p, &f)) off.push_back(std::fabs(double(f) * trunc / vs));
+  }
+  std::sort(off.begin(), off.end());
+  return off;
+}
+
 // The scan session owns what a scan accumulates: its totals are the sums of its reports,
 // its trajectory their poses, and the reference is the ray cast from the last pose (frame to
 // model) or the last tracked frame (the brightness-constancy tracker, always frame to frame).
@@ -274,15 +287,9 @@ TEST(IncrementalMesh, APreviewAtStepTwoLiesOnTheSurfaceAndTheWholeFollows) {
   EXPECT_GT(share, 0.12);
   EXPECT_LT(share, 0.40);
   // On the surface: the model's TSDF at each preview vertex, in voxels.
-  const volume::Volume& model = s.pipeline().DownloadVolume();
-  const float vs = o.volume.voxel_m, trunc = o.volume.truncation_m();
-  std::vector<double> off;
-  for (const Float3& p : preview.position) {
-    float f = 0;
-    if (model.SampleTsdf(p, &f)) off.push_back(std::fabs(double(f) * trunc / vs));
-  }
+  const std::vector<double> off = TsdfAtVertices(s.pipeline().DownloadVolume(), o.volume, preview.position);
   ASSERT_GT(off.size(), preview.position.size() * 9 / 10);
-  std::sort(off.begin(), off.end());
+  const float vs = o.volume.voxel_m;
   const double median = off[off.size() / 2], p95 = off[off.size() * 95 / 100];
   EXPECT_LT(median, 0.25);
   EXPECT_LT(p95, 1.0);
@@ -361,15 +368,8 @@ TEST(IncrementalMesh, PreviewBricksWaitTheirTurnAndCatchUp) {
   const double share = double(c.triangles.size()) / double(a.triangles.size());
   EXPECT_GT(share, 0.08);
   EXPECT_LT(share, 0.3);
-  const volume::Volume& model = s.pipeline().DownloadVolume();
-  const float vs = o.volume.voxel_m, trunc = o.volume.truncation_m();
-  std::vector<double> off;
-  for (const Float3& p : c.position) {
-    float f = 0;
-    if (model.SampleTsdf(p, &f)) off.push_back(std::fabs(double(f) * trunc / vs));
-  }
+  const std::vector<double> off = TsdfAtVertices(s.pipeline().DownloadVolume(), o.volume, c.position);
   ASSERT_GT(off.size(), c.position.size() * 9 / 10);
-  std::sort(off.begin(), off.end());
   const double median = off[off.size() / 2];
   EXPECT_LT(median, 0.5);
   std::printf("bricks meshed: %zu each time, %zu waiting their turn (least share of pieces %.3f); step 4: %.2f of "
