@@ -37,6 +37,17 @@ HDRF_HD int RoundToInt(float x) {
   const float d = x - float(i);     // the exact fractional part
   return i + (d >= 0.5f ? 1 : 0) - (d <= -0.5f ? 1 : 0);
 }
+// floorf as an int for |x| < 2^31 (what int(floorf(x)) gives there): on the host without the
+// library's floor, which x86-64's baseline instruction set has no instruction for (the ray
+// cast takes three per trilinear sample).
+HDRF_HD int FloorToInt(float x) {
+#if defined(__CUDA_ARCH__)
+  return int(floorf(x));
+#else
+  const int i = int(x);  // toward zero
+  return i - (x < float(i) ? 1 : 0);
+#endif
+}
 HDRF_HD Float3 Normalized(Float3 a) { return a * (1.0f / Length(a)); }
 HDRF_HD float MaxComponent(Float3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
 HDRF_HD float Luminance(Float3 rgb) {  // Rec. 709 / sRGB primaries

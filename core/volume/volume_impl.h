@@ -292,7 +292,7 @@ struct VolumeView {
   template <typename Visit>
   HDRF_HD void ForEachCorner(Float3 p, const BrickHint& hint, bool short_way, Visit&& visit) const {
     const Float3 g = Grid(p);
-    const int x = int(floorf(g.x)), y = int(floorf(g.y)), z = int(floorf(g.z));
+    const int x = FloorToInt(g.x), y = FloorToInt(g.y), z = FloorToInt(g.z);
     const float ax = g.x - float(x), ay = g.y - float(y), az = g.z - float(z);
     const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
     const bool in_one = (x & 7) != 7 && (y & 7) != 7 && (z & 7) != 7;
@@ -390,7 +390,7 @@ HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_w
     const Float3 g = pw / bs;
     if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
       continue;
-    mark(int(floorf(g.x)), int(floorf(g.y)), int(floorf(g.z)));
+    mark(FloorToInt(g.x), FloorToInt(g.y), FloorToInt(g.z));
   }
 }
 
@@ -479,7 +479,7 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     float te = t1;
     for (int k = 0; k < 3; ++k) {
       if (inv_d[k] == 1e9f) continue;
-      const float c = floorf(gp[k]);
+      const float c = float(FloorToInt(gp[k]));
       const float edge = inv_d[k] > 0.f ? c + 1.f : c;
       const float tk = t + (edge - gp[k]) * cell * inv_d[k];
       te = te < tk ? te : tk;
@@ -493,7 +493,7 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     const Float3 g = p / bs;
     if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
       break;
-    const int bx = int(floorf(g.x)), by = int(floorf(g.y)), bz = int(floorf(g.z));
+    const int bx = FloorToInt(g.x), by = FloorToInt(g.y), bz = FloorToInt(g.z);
     // The brick first (one look-up where it is there, as near surfaces); where it is absent,
     // its group decides how far the ray may skip.
     typename VolumeView<Enc>::BrickHint hint;

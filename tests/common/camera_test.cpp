@@ -52,14 +52,14 @@ TEST(PinholeCamera, ContainsIsInclusiveOfBorderPixels) {
   EXPECT_FALSE(kCam.Contains({-0.1f, 10.f}));
 }
 
-// The inline rounding used for pixel look-ups and voxel storage gives lroundf's integer for
-// every float it can meet: halves away from zero, the floats next to each half, large values.
-TEST(RoundToInt, MatchesLroundfWhereverTheResultFitsAnInt) {
+// Floats an inline rounding can meet: halves and whole numbers with the floats next to
+// them, both signs, large values, and random bit patterns of floats within +-2e9.
+std::vector<float> RoundingProbes() {
   std::vector<float> xs = {0.f, -0.f, 0.5f, -0.5f, 1.5f, -1.5f, 2.5f, -2.5f, 1e9f, -1e9f, 8388607.5f, -8388607.5f,
                            16777217.f, 2147483520.f * 0.999f};
   for (float h = 0.5f; h < 1e6f; h = h * 1.37f + 1.f) {
-    const float half = std::floor(h) + 0.5f;
-    for (float x : {half, -half}) {
+    const float half = std::floor(h) + 0.5f, whole = std::floor(h) + 1.f;
+    for (float x : {half, -half, whole, -whole}) {
       xs.push_back(x);
       xs.push_back(std::nextafter(x, 0.f));
       xs.push_back(std::nextafter(x, 2.f * x));
@@ -73,6 +73,13 @@ TEST(RoundToInt, MatchesLroundfWhereverTheResultFitsAnInt) {
     std::memcpy(&x, &bits, 4);
     if (std::isfinite(x) && std::fabs(x) < 2e9f) xs.push_back(x);
   }
+  return xs;
+}
+
+// The inline rounding used for pixel look-ups and voxel storage gives lroundf's integer for
+// every float it can meet: halves away from zero, the floats next to each half, large values.
+TEST(RoundToInt, MatchesLroundfWhereverTheResultFitsAnInt) {
+  const std::vector<float> xs = RoundingProbes();
   int checked = 0;
   for (float x : xs) {
     ASSERT_EQ(RoundToInt(x), int(std::lroundf(x))) << "x = " << x;
@@ -83,6 +90,24 @@ TEST(RoundToInt, MatchesLroundfWhereverTheResultFitsAnInt) {
   EXPECT_LT(RoundToInt(std::nanf("")), -1000000000);
   EXPECT_LT(RoundToInt(3e9f), -1000000000);
   EXPECT_LT(RoundToInt(-3e9f), -1000000000);
+}
+
+// The voxel and brick coordinates' floor (the ray cast's, without the library call) gives
+// floorf's integer for the same floats: whole numbers, the floats just below and above them,
+// negative fractions (-0.5 -> -1), signed zeros.
+TEST(FloorToInt, MatchesFloorfWhereverTheResultFitsAnInt) {
+  int checked = 0, negative_fractions = 0;
+  for (float x : RoundingProbes()) {
+    ASSERT_EQ(FloorToInt(x), int(std::floor(x))) << "x = " << x;
+    negative_fractions += x < 0.f && x != std::floor(x);
+    ++checked;
+  }
+  EXPECT_GT(checked, 150000);
+  EXPECT_GT(negative_fractions, 1000);
+  EXPECT_EQ(FloorToInt(-0.f), 0);
+  EXPECT_EQ(FloorToInt(-1e-30f), -1);
+  EXPECT_EQ(FloorToInt(std::nextafter(-3.f, 0.f)), -3);
+  EXPECT_EQ(FloorToInt(std::nextafter(-3.f, -4.f)), -4);
 }
 
 }  // namespace
