@@ -18,7 +18,7 @@ ExposurePlot::ExposurePlot(QWidget* parent) : QWidget(parent) {
                 "and reported by the sensor (orange)"));
 }
 
-void ExposurePlot::SetSeries(const std::vector<double>& est, const std::vector<double>& rep) {
+void ExposurePlot::SetSeries(std::span<const double> est, std::span<const double> rep) {
   const std::size_t n = est.size(), first = n > kWindow ? n - kWindow : 0;
   est_.assign(est.begin() + long(first), est.end());
   rep_.assign(rep.begin() + long(std::min(first, rep.size())), rep.end());

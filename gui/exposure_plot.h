@@ -3,6 +3,7 @@
 #pragma once
 
 #include <QWidget>
+#include <span>
 #include <vector>
 
 namespace hdrf::gui {
@@ -12,7 +13,7 @@ class ExposurePlot : public QWidget {
  public:
   explicit ExposurePlot(QWidget* parent = nullptr);
   // Reported values may be NaN (the sensor did not say).
-  void SetSeries(const std::vector<double>& estimated, const std::vector<double>& reported);
+  void SetSeries(std::span<const double> estimated, std::span<const double> reported);
   int points() const { return int(est_.size()); }
 
  protected:

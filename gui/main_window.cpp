@@ -807,7 +807,7 @@ void MainWindow::RenderPreview(const std::shared_ptr<const Snapshot>& s) {
   const int in_model = s->report.index + 1;
   frames_label_->setText(in_model > 0 ? tr("Live preview (not scanning); the model holds %1 frames").arg(in_model)
                                       : tr("Live preview (not scanning)"));
-  if (!s->trajectory.empty()) view3d_->SetTrajectory(s->trajectory, s->camera);
+  if (!s->trajectory.empty()) view3d_->SetTrajectory(s->trajectory.span(), s->camera);
 }
 
 void MainWindow::TellShownViews() {
@@ -941,9 +941,9 @@ void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
   }
   // 3-D view: the trajectory every frame (first: the view starts from the camera's pose),
   // the mesh a few times a second.
-  view3d_->SetTrajectory(s->trajectory, s->camera);
+  view3d_->SetTrajectory(s->trajectory.span(), s->camera);
   view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
-  plot_->SetSeries(s->exposure_estimated, s->exposure_reported);
+  plot_->SetSeries(s->exposure_estimated.span(), s->exposure_reported.span());
 }
 
 namespace {

@@ -138,6 +138,7 @@ void ScanWorker::Open() {
   // only the model starts again.
   if (!(live_ && source_spec_ == settings_.source && !lost_)) OpenSource();
   session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+  ClearSeries();
   ResetMesher();
   images_time_ms_ = 0;
   // The previous model was dropped on purpose: so is its recovery file.
@@ -194,6 +195,7 @@ void ScanWorker::OpenProject(const QString& path) {
     std::unique_ptr<pipeline::ScanSession> session = io::ResumeSession(p);
     DropRecovery();
     session_ = std::move(session);
+    ClearSeries();
     ResetMesher();
     settings_.pipeline = session_->pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
@@ -249,14 +251,30 @@ void ScanWorker::Publish() {
   emit snapshot(std::move(s));
 }
 
-void ScanWorker::FillScanState(Snapshot& s) const {
+void ScanWorker::ClearSeries() {
+  poses_.Clear();
+  exposure_estimated_.Clear();
+  exposure_reported_.Clear();
+}
+
+void ScanWorker::SyncSeries() {
+  const std::vector<pipeline::FrameReport>& reports = session_->reports();
+  if (poses_.size() > reports.size()) ClearSeries();
+  for (std::size_t i = poses_.size(); i < reports.size(); ++i) {
+    const pipeline::FrameReport& r = reports[i];
+    poses_.Append(r.T_world_camera);
+    exposure_estimated_.Append(r.exposure_ratio);
+    exposure_reported_.Append(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
+  }
+}
+
+void ScanWorker::FillScanState(Snapshot& s) {
   const pipeline::Pipeline& pipe = session_->pipeline();
   s.camera = session_->sensor().camera;
-  s.trajectory = session_->poses();
-  for (const pipeline::FrameReport& r : session_->reports()) {
-    s.exposure_estimated.push_back(r.exposure_ratio);
-    s.exposure_reported.push_back(r.exposure_ratio_reported.value_or(std::numeric_limits<double>::quiet_NaN()));
-  }
+  SyncSeries();
+  s.trajectory = poses_.prefix();
+  s.exposure_estimated = exposure_estimated_.prefix();
+  s.exposure_reported = exposure_reported_.prefix();
   s.mesh = mesh_;
   const pipeline::VolumeStats vs = pipe.volume_stats();
   s.volume_bytes = vs.bytes;
@@ -431,7 +449,8 @@ void ScanWorker::Preview() {
     s->images.depth = io::DepthToMetres(f.depth_mm, live_->sensor().depth_scale);
     s->camera = live_->sensor().camera;
     if (session_) {
-      s->trajectory = session_->poses();
+      SyncSeries();
+      s->trajectory = poses_.prefix();
       s->report.index = session_->frames() - 1;
     }
     s->mesh = mesh_;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "gui/export_dialog.h"
+#include "gui/shared_series.h"
 #include "io/asset_export.h"
 
 #include <QImage>
@@ -108,8 +109,10 @@ struct Snapshot {
                                      // shown, at the display's rate: may be empty)
   bool has_images = false;           // `images` were taken with this frame (at the display's rate)
   PinholeCamera camera;
-  std::vector<Pose> trajectory;      // every pose so far
-  std::vector<double> exposure_estimated, exposure_reported;  // ratios per frame (reported: NaN if none)
+  // Every pose so far, and the exposure ratios per frame (reported: NaN if none): prefixes of
+  // series the scan shares with every snapshot (shared_series.h), not copies.
+  SharedSeries<Pose>::Prefix trajectory;
+  SharedSeries<double>::Prefix exposure_estimated, exposure_reported;
   std::shared_ptr<const mesh::Mesh> mesh;  // latest meshed surface (may be older than the frame)
   std::size_t volume_bytes = 0, bricks = 0;
   double volume_budget_mb = 0;       // volume.max_memory_mb
@@ -214,7 +217,13 @@ class ScanWorker : public QObject {
   void Autosave(bool force);  // to recovery_ when due (or now), if frames were added since
   void DropRecovery();        // the recovery file is no longer needed
   void Publish();             // a snapshot of the model as it stands (after opening a project)
-  void FillScanState(Snapshot& s) const;  // trajectory, exposures, mesh, volume, device
+  void FillScanState(Snapshot& s);  // trajectory, exposures, mesh, volume, device
+  // The shared series brought up to the session's reports (only the new frames' values are
+  // appended); ClearSeries where the session is replaced.
+  void SyncSeries();
+  void ClearSeries();
+  SharedSeries<Pose> poses_;
+  SharedSeries<double> exposure_estimated_, exposure_reported_;
   void OpenSource();
   void Lost();     // the camera was unplugged: pause, keep the model, wait for it
   void TryReconnect(int attempt);

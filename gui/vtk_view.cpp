@@ -395,7 +395,7 @@ void VtkView::SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours) {
   update();
 }
 
-void VtkView::SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera& cam) {
+void VtkView::SetTrajectory(std::span<const Pose> poses, const PinholeCamera& cam) {
   vtkNew<vtkPoints> pts;
   vtkNew<vtkCellArray> line;
   if (!poses.empty()) {

@@ -13,6 +13,7 @@
 #include <QWidget>
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "common/camera.h"
@@ -35,7 +36,7 @@ class VtkView : public QWidget {
 
   // The mesh with one display colour per vertex.
   void SetMesh(const mesh::Mesh& m, const std::vector<Rgb8>& colours);
-  void SetTrajectory(const std::vector<Pose>& poses, const PinholeCamera& cam);
+  void SetTrajectory(std::span<const Pose> poses, const PinholeCamera& cam);
   // The region the volume has allocated (world box); an empty box hides it.
   void SetRegion(const Float3& lo, const Float3& hi);
   std::array<Float3, 2> region() const { return region_; }

@@ -20,12 +20,15 @@
 #include <numbers>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <thread>
 
 #include "gui/display_pacer.h"
 #include "gui/preview_detail.h"
 #include "gui/exposure_plot.h"
 #include "gui/image_view.h"
 #include "gui/scan_worker.h"
+#include "gui/shared_series.h"
 #include "gui/settings_form.h"
 #include "gui/tone_mapper.h"
 #include "gui/tone_panel.h"
@@ -541,6 +544,66 @@ TEST(SettingsForm, IsGeneratedFromTheRegistryAndRoundTrips) {
   test::ExpectErrorContaining([&] { again.Options(); }, {"'volume.max_weight'"});
 }
 
+// A snapshot's series is the prefix it was taken at, whatever is appended after it (in place
+// or after the values moved to a longer buffer, or after Clear); a hundred thousand frames
+// take a handful of buffers; a reader on another thread sees only the values of its prefix.
+TEST(SharedSeries, PrefixesKeepTheirValuesAsTheSeriesGrows) {
+  SharedSeries<double> s;
+  std::vector<SharedSeries<double>::Prefix> kept;
+  for (int i = 0; i < 100000; ++i) {
+    s.Append(0.5 * i);
+    if (i % 997 == 0 || i == 255 || i == 256) kept.push_back(s.prefix());
+  }
+  EXPECT_EQ(s.size(), 100000u);
+  EXPECT_LE(s.buffers_made(), 10);  // 256, 512, ... 131072
+  EXPECT_GE(s.buffers_made(), 9);
+  s.Clear();
+  s.Append(-1.0);
+  for (const auto& p : kept) {
+    ASSERT_FALSE(p.empty());
+    for (std::size_t i = 0; i < p.size(); i += 61) ASSERT_EQ(p[i], 0.5 * double(i)) << p.size();
+    ASSERT_EQ(p.back(), 0.5 * double(p.size() - 1));
+    ASSERT_EQ(p.span().size(), p.size());
+  }
+  EXPECT_EQ(kept[0].size(), 1u);
+  EXPECT_EQ(s.prefix().size(), 1u);
+  EXPECT_EQ(s.prefix()[0], -1.0);
+  EXPECT_TRUE(SharedSeries<double>::Prefix().span().empty());
+
+  // One thread appends and hands out prefixes; another reads them as they come.
+  SharedSeries<int> t;
+  std::mutex m;
+  std::vector<SharedSeries<int>::Prefix> queue;
+  bool done = false;
+  long bad = 0, read = 0;
+  std::thread reader([&] {
+    for (;;) {
+      std::vector<SharedSeries<int>::Prefix> got;
+      {
+        std::lock_guard<std::mutex> lock(m);
+        got.swap(queue);
+        if (got.empty() && done) return;
+      }
+      for (const auto& p : got) {
+        for (std::size_t i = 0; i < p.size(); i += 7) bad += p[i] != int(i);
+        ++read;
+      }
+    }
+  });
+  for (int i = 0; i < 20000; ++i) {
+    t.Append(i);
+    std::lock_guard<std::mutex> lock(m);
+    queue.push_back(t.prefix());
+  }
+  {
+    std::lock_guard<std::mutex> lock(m);
+    done = true;
+  }
+  reader.join();
+  EXPECT_EQ(bad, 0);
+  EXPECT_EQ(read, 20000);
+}
+
 TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   WorkerOnThread wt;
   std::vector<std::pair<std::shared_ptr<const mesh::Mesh>, bool>> meshes;
@@ -558,14 +621,21 @@ TEST(ScanWorker, PublishesOneSnapshotPerFrameFromItsThread) {
   ASSERT_EQ(got.size(), 12u);
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i]->report.index, int(i));
-    EXPECT_EQ(got[i]->trajectory.size(), i + 1);
+    ASSERT_EQ(got[i]->trajectory.size(), i + 1);
+    EXPECT_TRUE(got[i]->trajectory.back().isApprox(got[i]->report.T_world_camera, 0.0));
+    ASSERT_EQ(got[i]->exposure_estimated.size(), i + 1);
+    ASSERT_EQ(got[i]->exposure_reported.size(), i + 1);
+    EXPECT_EQ(got[i]->exposure_estimated.back(), got[i]->report.exposure_ratio);
+    // The series are shared, not copied: every snapshot's trajectory is a prefix of one buffer.
+    EXPECT_EQ(&got[i]->trajectory[0], &got.back()->trajectory[0]);
     EXPECT_EQ(got[i]->images.radiance.width(), 160);
     EXPECT_EQ(got[i]->images.render.normal.width(), 160);
     EXPECT_EQ(got[i]->color.width(), 160);
   }
   EXPECT_GT(got.back()->volume_bytes, 0u);
-  // Snapshots are independent copies: the first is untouched by later frames.
+  // Snapshots do not change: the first still holds one pose, the one its frame reported.
   EXPECT_EQ(got[0]->trajectory.size(), 1u);
+  EXPECT_TRUE(got[0]->trajectory[0].isApprox(got[0]->report.T_world_camera, 0.0));
   // The surface came from the mesher's thread, refreshed along the scan; the last one is the
   // whole model's surface (the triangles of a full extraction).
   EXPECT_GE(meshes.size(), 2u);
