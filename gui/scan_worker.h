@@ -222,8 +222,6 @@ class ScanWorker : public QObject {
   // appended); ClearSeries where the session is replaced.
   void SyncSeries();
   void ClearSeries();
-  SharedSeries<Pose> poses_;
-  SharedSeries<double> exposure_estimated_, exposure_reported_;
   void OpenSource();
   void Lost();     // the camera was unplugged: pause, keep the model, wait for it
   void TryReconnect(int attempt);
@@ -231,6 +229,8 @@ class ScanWorker : public QObject {
   void FinishRecording(const QString& why);
   LiveStatus Status();
   ScanSettings settings_;
+  SharedSeries<Pose> poses_;  // the snapshots' trajectory and exposure series (SyncSeries)
+  SharedSeries<double> exposure_estimated_, exposure_reported_;
   std::unique_ptr<pipeline::FrameSource> source_;
   sensors::LiveFrameSource* live_ = nullptr;  // source_, when it is a live camera
   std::string source_spec_;                   // what source_ was opened from

@@ -30,7 +30,6 @@ class SharedSeries {
     const T* begin() const { return buffer_ ? buffer_->data() : nullptr; }
     const T* end() const { return begin() + size_; }
     std::span<const T> span() const { return {begin(), size_}; }
-    std::vector<T> ToVector() const { return {begin(), end()}; }
 
    private:
     friend class SharedSeries;
