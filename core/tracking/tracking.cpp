@@ -8,6 +8,7 @@
 #include "common/message.h"
 #include "imaging/imaging.h"
 #include "tracking/pyramid_driver.h"
+#include "tracking/term_batch.h"
 
 namespace hdrf::tracking {
 
@@ -78,8 +79,11 @@ void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
 #pragma omp parallel for schedule(dynamic, 1)
   for (int c = 0; c < chunks; ++c) {
     GnSystem local;
-    for (int y = c * kChunkRows; y < std::min(h, (c + 1) * kChunkRows); ++y)
-      for (int x = 0; x < w; ++x) term(x, y, local);
+    {
+      TermBatch batch(local);
+      for (int y = c * kChunkRows; y < std::min(h, (c + 1) * kChunkRows); ++y)
+        for (int x = 0; x < w; ++x) term(x, y, batch);
+    }
     partial[std::size_t(c)] = local;
   }
   for (const GnSystem& p : partial) acc.Merge(p);
@@ -135,11 +139,11 @@ GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const 
   const bool use_photo = o.kind != TrackerKind::kIcp;
   if (use_icp) {
     const IcpArgs a = MakeIcpArgs(ref, T_world_ref, live, T_world_live, o);
-    SumTerms(live.cam.width, live.cam.height, [&](int x, int y, GnSystem& s) { IcpTerm(a, x, y, s); }, acc);
+    SumTerms(live.cam.width, live.cam.height, [&](int x, int y, TermBatch& s) { IcpTerm(a, x, y, s); }, acc);
   }
   if (use_photo) {
     const PhotoArgs a = MakePhotoArgs(ref, live, T_world_live, o);
-    SumTerms(ref.cam.width, ref.cam.height, [&](int x, int y, GnSystem& s) { PhotoTerm(a, x, y, s); }, acc);
+    SumTerms(ref.cam.width, ref.cam.height, [&](int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); }, acc);
   }
   return acc;
 }

@@ -1,6 +1,8 @@
 // Per-pixel Gauss-Newton terms of the tracker, shared by the CPU loops (tracking.cpp) and
 // the CUDA reductions (tracking_cuda.cu): the same residual, Jacobian and robust weight on
-// both backends; only the order of the final sums differs.
+// both backends; only the order of the final sums differs. A term hands its Jacobian to
+// AddRobustTerm of its accumulator: GnSystem adds it at once (the GPU's threads), the CPU's
+// TermBatch gathers terms and adds them several at a time.
 #pragma once
 
 #include "common/camera.h"
@@ -63,7 +65,8 @@ struct IcpArgs {
   double R_world_live[9];  // rotation of the live pose, row-major, double
   float cos_max_angle, max_dist, inv_sigma, huber_k;
 };
-HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, GnSystem& acc) {
+template <typename Acc>
+HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, Acc& acc) {
   const Float3 v = a.live_vertex(x, y);
   const Float3 nl = a.live_normal(x, y);
   if (v.z <= 0.f || Dot(nl, nl) == 0.f) return false;  // (a length is 0 exactly where this is)
@@ -103,7 +106,8 @@ struct PhotoArgs {
   RigidTransform T_live_world;
   float photo_sigma, huber_k;
 };
-HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, GnSystem& acc) {
+template <typename Acc>
+HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, Acc& acc) {
   const Float3 m = a.ref_vertex(x, y);
   if (m.x == 0.f && m.y == 0.f && m.z == 0.f) return false;
   const float i_ref = a.ref_intensity(x, y);

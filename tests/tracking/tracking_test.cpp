@@ -16,6 +16,7 @@
 #include "support/test_support.h"
 #include "pipeline/pipeline.h"
 #include "sim/builtin_sensor.h"
+#include "tracking/term_batch.h"
 #include "tracking/tracking.h"
 
 namespace hdrf {
@@ -311,6 +312,38 @@ TEST(GaussNewtonStep, PlainDoubleExpLogAndOrthonormalisationMatchSe3) {
   std::printf("worst difference from se3: exp/orthonormalise %.2g, log %.2g\n", worst_exp, worst_log);
   EXPECT_LE(worst_exp, 1e-14);
   EXPECT_LE(worst_log, 1e-9);
+}
+
+// The CPU's batched sums against terms added one at a time: for batches of 1 to 3 x 128 + 3
+// terms (partly filled last groups, batches emptied when full and at the end), the normal
+// equations agree to rounding, the robust sums and counts exactly; each lane's sum is a
+// quarter of the terms, so leaving out a lane, a padded term or a full batch fails.
+TEST(TermBatch, SumsAsTermsAddedOneAtATime) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01;
+  for (int count : {1, 2, 3, 4, 5, 127, 128, 129, 255, 387}) {
+    for (int first : {27, 28}) {
+      tracking::GnSystem one, batched;
+      {
+        tracking::TermBatch batch(batched);
+        for (int k = 0; k < count; ++k) {
+          double J[6];
+          for (double& j : J) j = n01(rng) * 10 + 3;  // all sums grow, none cancels
+          const double r = n01(rng) * 0.05, s = 1 + 0.1 * std::abs(n01(rng));
+          tracking::AddRobustTerm(one, J, r, s, 0.04, first);  // a small Huber k: many terms down-weighted
+          AddRobustTerm(batch, J, r, s, 0.04, first);
+        }
+      }
+      double worst = 0;
+      for (int i = 0; i < tracking::GnSystem::kH + tracking::GnSystem::kG; ++i)
+        worst = std::max(worst, std::abs(one.v[i] - batched.v[i]) / std::max(1e-300, std::abs(one.v[i])));
+      EXPECT_LE(worst, 1e-12) << count << " terms";
+      EXPECT_GT(std::abs(batched.v[0]), 0) << count << " terms";
+      for (int i = tracking::GnSystem::kH + tracking::GnSystem::kG; i < tracking::GnSystem::kSize; ++i)
+        EXPECT_EQ(one.v[i], batched.v[i]) << count << " terms, sum " << i;
+      EXPECT_EQ(batched.v[first + 4], count);
+    }
+  }
 }
 
 TEST(IcpTerm, PointToPlaneResidualAndGates) {
