@@ -47,6 +47,9 @@ struct EngineBenchRow {
   StageTimes bytes;
   double bandwidth = 0;
   std::array<double, 4> level_iterations{};  // mean Gauss-Newton iterations a frame, finest level first
+  // The slow frames a mean hides (a stall while the model grows, say): the stages' sum of
+  // the timed frames at the 99th percentile and the largest, and the largest integrate stage.
+  double p99_ms = 0, worst_ms = 0, worst_integrate_ms = 0;
 };
 
 // Runs every device x case; `progress` is told each finished row.

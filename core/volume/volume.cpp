@@ -141,7 +141,7 @@ bool Volume::Gradient(Float3 p, Float3* n) const {
   return VisitEncoding(o_.encoding, [&](auto tag) { return view<decltype(tag)>().Gradient(p, n); });
 }
 
-void Volume::Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 3>> coords, std::string full_reason) {
+void Volume::Assign(std::span<const std::uint8_t> pool, std::vector<std::array<int, 3>> coords, std::string full_reason) {
   if (pool.size() != coords.size() * o_.brick_bytes()) throw Error("volume copy: inconsistent sizes");
   std::size_t cap = 1024;
   while (cap < 2 * coords.size() + 2) cap *= 2;
@@ -156,7 +156,7 @@ void Volume::Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 
     const std::uint64_t g = GroupKey(c[0], c[1], c[2]);
     if (groups_.Find(g) < 0) groups_.Insert(g, 1);
   }
-  pool_ = std::move(pool);
+  pool_ = GrowableBytes(pool);
   brick_coord_ = std::move(coords);
   full_reason_ = std::move(full_reason);
   stamp_.assign(brick_coord_.size(), ++clock_);

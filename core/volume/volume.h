@@ -7,9 +7,11 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "common/growable_bytes.h"
 #include "common/host_memory.h"
 #include "common/camera.h"
 #include "common/image.h"
@@ -149,8 +151,8 @@ class Volume {
   // the voxel pool (512 encoded voxels per brick, in slot order), each slot's brick
   // coordinates, and why allocation had stopped ("" if it had not). The hash tables are
   // rebuilt from the coordinates.
-  const std::vector<std::uint8_t>& pool() const { return pool_; }
-  void Assign(std::vector<std::uint8_t> pool, std::vector<std::array<int, 3>> brick_coords, std::string full_reason);
+  std::span<const std::uint8_t> pool() const { return pool_.span(); }
+  void Assign(std::span<const std::uint8_t> pool, std::vector<std::array<int, 3>> brick_coords, std::string full_reason);
   // Changes: a clock that each Integrate and Assign advances, each brick stamped with the
   // clock of its last change. CopyChanged: the bricks changed after clock value `since`.
   std::uint32_t change_clock() const { return clock_; }
@@ -171,7 +173,7 @@ class Volume {
   VolumeOptions o_;
   BrickTable table_;   // brick key -> slot
   BrickTable groups_;  // group key -> 1 (empty-space skipping)
-  std::vector<std::uint8_t> pool_;  // 512 encoded voxels per brick
+  GrowableBytes pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
   std::vector<std::uint32_t> stamp_;  // per slot: the change clock of its last update
   std::uint32_t clock_ = 0;
