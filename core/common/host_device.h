@@ -17,3 +17,16 @@
 #else
 #define HDRF_UNROLL
 #endif
+
+// Inlines a small lambda on the host (nvcc inlines device lambdas itself), and unrolls a short
+// loop on both, for per-element code whose loop indices should become constants.
+#if defined(__CUDACC__)
+#define HDRF_INLINE_LAMBDA
+#else
+#define HDRF_INLINE_LAMBDA __attribute__((always_inline))
+#endif
+#if defined(__CUDA_ARCH__)
+#define HDRF_UNROLL_HOST _Pragma("unroll")
+#else
+#define HDRF_UNROLL_HOST _Pragma("GCC unroll 8")
+#endif

@@ -164,6 +164,21 @@ TEST(Volume, RaysStartedNearTheFusedDepthFindTheSameSurface) {
   EXPECT_GE(double(deeper), 0.95 * double(in_guided));
 }
 
+// A volume with the frames fused at their true poses (relative to the first).
+volume::Volume FuseFrames(const volume::VolumeOptions& vo, const std::vector<sim::SimFrame>& frames, const PinholeCamera& cam) {
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  volume::Volume vol(vo);
+  for (const auto& f : frames) {
+    const DepthImage depth = Metres(f.depth);
+    const auto v = imaging::VertexMap(depth, cam);
+    const auto n = imaging::NormalMap(v);
+    Image<float> one(cam.width, cam.height, 1.f);
+    RadianceImage r = f.radiance.Clone();
+    vol.Integrate({&depth, &n, &r, &one, &one, &one, cam, T0inv * f.T_world_camera});
+  }
+  return vol;
+}
+
 // The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
 // gives exactly the bits of the general way (each corner's brick found on its own), with and
 // without a hint, for every encoding: the ray cast and the tracker's reference do not change.
@@ -174,15 +189,7 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
   for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
     volume::VolumeOptions vo;
     vo.encoding = enc;
-    volume::Volume vol(vo);
-    for (const auto& f : frames) {
-      const DepthImage depth = Metres(f.depth);
-      const auto v = imaging::VertexMap(depth, cam);
-      const auto n = imaging::NormalMap(v);
-      Image<float> one(320, 240, 1.f);
-      RadianceImage r = f.radiance.Clone();
-      vol.Integrate({&depth, &n, &r, &one, &one, &one, cam, T0inv * f.T_world_camera});
-    }
+    const volume::Volume vol = FuseFrames(vo, frames, cam);
     volume::VisitEncoding(enc, [&](auto tag) {
       using V = decltype(tag);
       const volume::VolumeView<V> vv = vol.view<V>();
@@ -224,6 +231,63 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
       EXPECT_GT(rad_both, 40000);
       EXPECT_GT(one_brick, 100000);
       EXPECT_LT(one_brick, 180000);
+    });
+  }
+}
+
+// The gradient from the 32 voxels read once (GradientOfVoxels) is the six samples' central
+// differences (GradientOfSamples) to rounding wherever it is defined, for every encoding,
+// at points around the surface; where a voxel it needs is unobserved it declines and
+// Gradient takes the six samples.
+TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
+  const auto frames = Frames(6, sim::AeMode::kFixed);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  const Pose T = frames[0].T_world_camera.inverse() * frames.back().T_world_camera;
+  const DepthImage depth = Metres(frames.back().depth);
+  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    volume::VolumeOptions vo;
+    vo.encoding = enc;
+    const volume::Volume vol = FuseFrames(vo, frames, cam);
+    volume::VisitEncoding(enc, [&](auto tag) {
+      using V = decltype(tag);
+      const volume::VolumeView<V> vv = vol.view<V>();
+      std::uint32_t state = 777u;
+      auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+      long both = 0, samples_only = 0, voxels_only = 0, differ = 0, fell_back = 0;
+      double worst = 0;
+      for (int i = 0; i < 100000; ++i) {
+        const int x = int(uniform() * 319.f), y = int(uniform() * 239.f);
+        if (!(depth(x, y) > 0)) continue;
+        const float z = depth(x, y) + (uniform() - 0.5f) * vo.truncation_m();
+        const Float3 pc = cam.BackProject(float(x), float(y), z);
+        const Eigen::Vector3d pw = T * Eigen::Vector3d(pc.x, pc.y, pc.z);
+        const Float3 p{float(pw.x()), float(pw.y()), float(pw.z())};
+        const typename volume::VolumeView<V>::BrickHint none;
+        Float3 ga, gb, n;
+        const bool a = vv.GradientOfVoxels(p, none, &ga), b = vv.GradientOfSamples(p, none, &gb);
+        if (a && b) {
+          ++both;
+          // Rounding: the samples' own positions p +- one voxel round in grid units (hundreds
+          // here, steps of 3e-5), so their weights are p's to about 1e-5 of a voxel.
+          const double d = double(Length(ga - gb)) / std::max(1e-6, double(Length(gb)));
+          worst = std::max(worst, d);
+          differ += d > 1e-4;
+        }
+        samples_only += b && !a;
+        voxels_only += a && !b;
+        if (!a && b) {
+          // Gradient declined by the voxels' way takes the samples' result.
+          const float len = Length(gb);
+          if (vv.Gradient(p, &n) && len >= 1e-6f && Length(n - gb / len) <= 1e-6f) ++fell_back;
+        }
+      }
+      std::printf("%s: both ways at %ld points (largest difference %.2g of the gradient's length), only the samples at %ld, only the voxels at %ld\n",
+                  volume::VoxelEncodingName(enc), both, worst, samples_only, voxels_only);
+      EXPECT_GT(both, 50000);
+      EXPECT_EQ(differ, 0);
+      EXPECT_EQ(voxels_only, 0);  // where all 32 voxels are observed every sample is defined
+      EXPECT_GT(samples_only, 0);
+      EXPECT_EQ(fell_back, samples_only);
     });
   }
 }
