@@ -45,21 +45,35 @@ HDRF_HD float BilateralPixel(ImageView<const float> d, const BilateralTables& t,
   if (!(c > 0.f && c <= 3.0e38f)) return 0.f;  // none, or not finite: no depth
   const int r = t.radius, side = 2 * r + 1;
   float sw = 0.f, sv = 0.f;
+  auto tap = [&](float v, int k) {
+    if (!(v > 0.f && v <= 3.0e38f)) return;
+    // The bin in float first: a depth difference of kilometres (a wrong depth scale) or an
+    // infinite one would overflow an int conversion and index outside the table.
+    const float fb = fabsf(v - c) * t.to_bin;
+    const int bin = fb < float(kBilateralBins) ? int(fb) : kBilateralBins;
+    const float wgt = t.spatial[k] * t.range[bin];
+    sw += wgt;
+    sv += wgt * v;
+  };
+#if !defined(__CUDA_ARCH__)
+  // On the CPU, a pixel whose window lies inside the image reads its rows without the
+  // border checks: the same taps in the same order, so the same bits.
+  if (x >= r && y >= r && x + r < d.width && y + r < d.height) {
+    for (int dy = -r; dy <= r; ++dy) {
+      const float* row = &d(x - r, y + dy);
+      const int k0 = (dy + r) * side;
+      for (int i = 0; i < side; ++i) tap(row[i], k0 + i);
+    }
+    return sv / sw;
+  }
+#endif
   for (int dy = -r; dy <= r; ++dy) {
     const int yy = y + dy;
     if (yy < 0 || yy >= d.height) continue;
     for (int dx = -r; dx <= r; ++dx) {
       const int xx = x + dx;
       if (xx < 0 || xx >= d.width) continue;
-      const float v = d(xx, yy);
-      if (!(v > 0.f && v <= 3.0e38f)) continue;
-      // The bin in float first: a depth difference of kilometres (a wrong depth scale) or an
-      // infinite one would overflow an int conversion and index outside the table.
-      const float fb = fabsf(v - c) * t.to_bin;
-      const int bin = fb < float(kBilateralBins) ? int(fb) : kBilateralBins;
-      const float wgt = t.spatial[(dy + r) * side + dx + r] * t.range[bin];
-      sw += wgt;
-      sv += wgt * v;
+      tap(d(xx, yy), (dy + r) * side + dx + r);
     }
   }
   return sv / sw;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <omp.h>
+
 #include "common/error.h"
 #include "volume/raycast_driver.h"
 
@@ -222,6 +224,35 @@ IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, const PinholeCam
   return a;
 }
 
+namespace {
+
+// Distinct brick keys in the order first named: an open-addressing set (at most half full,
+// doubled as it fills) beside the list of its keys.
+struct BrickKeySet {
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> set = std::vector<std::uint64_t>(std::size_t(1) << 12, kEmptyKey);
+  void Insert(std::uint64_t k) {
+    std::size_t mask = set.size() - 1, h = HashBrickKey(k) & mask;
+    while (set[h] != kEmptyKey) {
+      if (set[h] == k) return;
+      h = (h + 1) & mask;
+    }
+    set[h] = k;
+    keys.push_back(k);
+    if (2 * keys.size() > set.size()) {  // twice the room, the keys again
+      set.assign(set.size() * 2, kEmptyKey);
+      mask = set.size() - 1;
+      for (const std::uint64_t e : keys) {
+        std::size_t g = HashBrickKey(e) & mask;
+        while (set[g] != kEmptyKey) g = (g + 1) & mask;
+        set[g] = e;
+      }
+    }
+  }
+};
+
+}  // namespace
+
 Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   IntegrateStats st;
   IntegrateArgs args = MakeIntegrateArgs(o_, in.camera, in.T_world_camera, in.radiance_scale);
@@ -236,37 +267,28 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   const RigidTransform T = ToRigidTransform(in.T_world_camera);
   const DepthImage& depth = *in.depth_m;
   // 1. Bricks within the truncation band of every depth sample (every 2nd pixel), in key
-  // order; new ones take the next slots in that order (as on the GPU). Each distinct brick is
-  // kept once as it is named (a per-frame open-addressing set, grown as it fills), so that
-  // only the distinct ones are sorted.
-  std::vector<std::uint64_t> keys;
-  std::vector<std::uint64_t> set(std::size_t(1) << 12, kEmptyKey);
-  std::uint64_t last = kEmptyKey;
-  const auto insert = [&](std::uint64_t k) {
-    std::size_t mask = set.size() - 1, h = HashBrickKey(k) & mask;
-    while (set[h] != kEmptyKey) {
-      if (set[h] == k) return;
-      h = (h + 1) & mask;
-    }
-    set[h] = k;
-    keys.push_back(k);
-    if (2 * keys.size() > set.size()) {  // at most half full: twice the room, the keys again
-      set.assign(set.size() * 2, kEmptyKey);
-      mask = set.size() - 1;
-      for (const std::uint64_t e : keys) {
-        std::size_t g = HashBrickKey(e) & mask;
-        while (set[g] != kEmptyKey) g = (g + 1) & mask;
-        set[g] = e;
-      }
-    }
-  };
-  for (int y = 0; y < depth.height(); y += 2)
-    for (int x = 0; x < depth.width(); x += 2)
-      ForBricksAlongRay(args, T, x, y, [&](int bx, int by, int bz) {
-        const std::uint64_t k = BrickKey(bx, by, bz);
-        if (k != last) insert(k);
-        last = k;
-      });
+  // order; new ones take the next slots in that order (as on the GPU). The CPU's threads
+  // each take rows and keep each distinct brick once as it is named (BrickKeySet); their
+  // sets are then merged, so that only the distinct bricks are sorted: the same keys
+  // whichever thread named which.
+  std::vector<BrickKeySet> named(std::size_t(std::max(1, omp_get_max_threads())));
+#pragma omp parallel
+  {
+    BrickKeySet& mine = named[std::size_t(omp_get_thread_num()) % named.size()];
+    std::uint64_t last = kEmptyKey;
+#pragma omp for schedule(dynamic, 4)
+    for (int y = 0; y < depth.height(); y += 2)
+      for (int x = 0; x < depth.width(); x += 2)
+        ForBricksAlongRay(args, T, x, y, [&](int bx, int by, int bz) {
+          const std::uint64_t k = BrickKey(bx, by, bz);
+          if (k != last) mine.Insert(k);
+          last = k;
+        });
+  }
+  BrickKeySet all;
+  for (const BrickKeySet& n : named)
+    for (const std::uint64_t k : n.keys) all.Insert(k);
+  std::vector<std::uint64_t> keys = std::move(all.keys);
   std::sort(keys.begin(), keys.end());
   std::vector<int> todo;
   todo.reserve(keys.size());
