@@ -5,6 +5,7 @@
 
 #include "common/image_view.h"
 #include "common/parallel.h"
+#include "volume/raycast_impl.h"
 #include "volume/volume_impl.h"
 
 namespace hdrf::volume {

@@ -16,6 +16,7 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/se3.h"
+#include "volume/raycast_impl.h"
 #include "volume/volume_impl.h"
 
 namespace hdrf::volume {

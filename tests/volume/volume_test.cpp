@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <type_traits>
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -179,6 +181,17 @@ volume::Volume FuseFrames(const volume::VolumeOptions& vo, const std::vector<sim
   return vol;
 }
 
+// Calls f(options, view) for each voxel encoding, with the frames fused (FuseFrames).
+template <typename F>
+void ForEachEncodingFused(const std::vector<sim::SimFrame>& frames, const PinholeCamera& cam, F&& f) {
+  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
+    volume::VolumeOptions vo;
+    vo.encoding = enc;
+    const volume::Volume vol = FuseFrames(vo, frames, cam);
+    volume::VisitEncoding(enc, [&](auto tag) { f(vo, vol.view<decltype(tag)>()); });
+  }
+}
+
 // The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
 // gives exactly the bits of the general way (each corner's brick found on its own), with and
 // without a hint, for every encoding: the ray cast and the tracker's reference do not change.
@@ -186,13 +199,9 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
   const auto frames = Frames(6, sim::AeMode::kFixed);
   const PinholeCamera cam = sim::SimCamera(320, 240);
   const Pose T0inv = frames[0].T_world_camera.inverse();
-  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
-    volume::VolumeOptions vo;
-    vo.encoding = enc;
-    const volume::Volume vol = FuseFrames(vo, frames, cam);
-    volume::VisitEncoding(enc, [&](auto tag) {
-      using V = decltype(tag);
-      const volume::VolumeView<V> vv = vol.view<V>();
+  ForEachEncodingFused(frames, cam, [&](const volume::VolumeOptions& vo, const auto& vv) {
+      using View = std::decay_t<decltype(vv)>;
+      const volume::VoxelEncoding enc = vo.encoding;
       // Points along the last view's rays, around the surface it shows and between.
       const DepthImage depth = Metres(frames.back().depth);
       const Pose T = T0inv * frames.back().T_world_camera;
@@ -208,7 +217,7 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
         const Float3 g = vv.Grid(p);
         const int gx = int(std::floor(g.x)), gy = int(std::floor(g.y)), gz = int(std::floor(g.z));
         one_brick += (gx & 7) != 7 && (gy & 7) != 7 && (gz & 7) != 7;
-        typename volume::VolumeView<V>::BrickHint hint;
+        typename View::BrickHint hint;
         if (i % 2) {  // half with the brick of a point a voxel away as the hint
           hint.bx = (gx + 1) >> 3, hint.by = gy >> 3, hint.bz = gz >> 3, hint.valid = true;
           hint.slot = vv.Slot(hint.bx, hint.by, hint.bz);
@@ -231,8 +240,7 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
       EXPECT_GT(rad_both, 40000);
       EXPECT_GT(one_brick, 100000);
       EXPECT_LT(one_brick, 180000);
-    });
-  }
+  });
 }
 
 // The gradient from the 32 voxels read once (GradientOfVoxels) is the six samples' central
@@ -244,13 +252,9 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
   const PinholeCamera cam = sim::SimCamera(320, 240);
   const Pose T = frames[0].T_world_camera.inverse() * frames.back().T_world_camera;
   const DepthImage depth = Metres(frames.back().depth);
-  for (const auto enc : {volume::VoxelEncoding::kFull, volume::VoxelEncoding::kNoNr, volume::VoxelEncoding::kCompact}) {
-    volume::VolumeOptions vo;
-    vo.encoding = enc;
-    const volume::Volume vol = FuseFrames(vo, frames, cam);
-    volume::VisitEncoding(enc, [&](auto tag) {
-      using V = decltype(tag);
-      const volume::VolumeView<V> vv = vol.view<V>();
+  ForEachEncodingFused(frames, cam, [&](const volume::VolumeOptions& vo, const auto& vv) {
+      using View = std::decay_t<decltype(vv)>;
+      const volume::VoxelEncoding enc = vo.encoding;
       std::uint32_t state = 777u;
       auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
       long both = 0, samples_only = 0, voxels_only = 0, differ = 0, fell_back = 0;
@@ -262,7 +266,7 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
         const Float3 pc = cam.BackProject(float(x), float(y), z);
         const Eigen::Vector3d pw = T * Eigen::Vector3d(pc.x, pc.y, pc.z);
         const Float3 p{float(pw.x()), float(pw.y()), float(pw.z())};
-        const typename volume::VolumeView<V>::BrickHint none;
+        const typename View::BrickHint none;
         Float3 ga, gb, n;
         const bool a = vv.GradientOfVoxels(p, none, &ga), b = vv.GradientOfSamples(p, none, &gb);
         if (a && b) {
@@ -288,8 +292,7 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
       EXPECT_EQ(voxels_only, 0);  // where all 32 voxels are observed every sample is defined
       EXPECT_GT(samples_only, 0);
       EXPECT_EQ(fell_back, samples_only);
-    });
-  }
+  });
 }
 
 TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {

@@ -1,0 +1,119 @@
+// Per-pixel ray casting of the volume, shared by the CPU loops and the CUDA kernels
+// (raycast_driver.h runs it on either device); the volume's arrays and samples are in
+// volume_impl.h.
+#pragma once
+
+#include "volume/volume_impl.h"
+
+namespace hdrf::volume {
+
+// ---- Ray casting ------------------------------------------------------------------------------
+struct RaycastArgs {
+  PinholeCamera cam;
+  RigidTransform T_world_camera;
+  float near_m, far_m;
+  // Where the rays may start (raycast_driver.h, RaycastGuide): per tile of kGuideTile x
+  // kGuideTile pixels, a depth (m) no surface of the tile lies before; 0 or no image: near_m.
+  ImageView<const float> start{};
+};
+inline constexpr int kGuideTile = 8;
+inline int GuideTiles(int pixels) { return (pixels + kGuideTile - 1) / kGuideTile; }  // tiles of a side
+struct RayHit {
+  Float3 vertex{0, 0, 0}, normal{0, 0, 0}, radiance{0, 0, 0};
+  float nr = 0, depth = 0;
+};
+
+// The first zero crossing (front face) of the TSDF along the ray of pixel (x, y), skipping
+// empty 4x4x4-brick groups and empty bricks; a zero hit where the ray met nothing.
+template <typename Enc>
+HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
+  RayHit hit;
+  const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
+  const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));
+  const Float3 dw = a.T_world_camera.Rotate(dc), o = a.T_world_camera.t;
+  // The volume has no bounds: the ray runs from near (or from where its tile's guide says the
+  // surface can begin) to far, skipping empty space.
+  float t0 = a.near_m;
+  const float t1 = a.far_m;
+  if (a.start.data) {
+    const float d = a.start(x / kGuideTile, y / kGuideTile) / dc.z;  // depth -> distance along the ray
+    t0 = d > t0 ? d : t0;
+  }
+  const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
+                          fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
+  // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
+  auto cell_exit = [&](const Float3& p, float cell, float t) {
+    const float gp[3] = {p.x / cell, p.y / cell, p.z / cell};
+    float te = t1;
+    for (int k = 0; k < 3; ++k) {
+      if (inv_d[k] == 1e9f) continue;
+      const float c = float(FloorToInt(gp[k]));
+      const float edge = inv_d[k] > 0.f ? c + 1.f : c;
+      const float tk = t + (edge - gp[k]) * cell * inv_d[k];
+      te = te < tk ? te : tk;
+    }
+    return te;
+  };
+  float t = t0, prev_f = 1.f, prev_t = -1.f;
+  bool prev_valid = false;
+  while (t < t1) {
+    const Float3 p = o + dw * t;
+    const Float3 g = p / bs;
+    if (!(fabsf(g.x) < float(kBrickRange - 1) && fabsf(g.y) < float(kBrickRange - 1) && fabsf(g.z) < float(kBrickRange - 1)))
+      break;
+    const int bx = FloorToInt(g.x), by = FloorToInt(g.y), bz = FloorToInt(g.z);
+    // The brick first (one look-up where it is there, as near surfaces); where it is absent,
+    // its group decides how far the ray may skip.
+    typename VolumeView<Enc>::BrickHint hint;
+    hint.bx = bx, hint.by = by, hint.bz = bz, hint.valid = true;
+    hint.slot = V.bricks.Find(BrickKey(bx, by, bz));
+    if (hint.slot < 0) {
+      const float cell = V.GroupAllocated(bx, by, bz) ? bs : 4 * bs;
+      const float te = cell_exit(p, cell, t) + 0.01f * vs;
+      t = t + 0.1f * vs > te ? t + 0.1f * vs : te;
+      prev_valid = false;
+      continue;
+    }
+    float f;
+    if (!V.SampleTsdf(p, &f, hint)) {
+      t += 0.5f * trunc;  // unobserved voxels inside an allocated brick
+      prev_valid = false;
+      continue;
+    }
+    if (prev_valid && prev_f > 0.f && f <= 0.f) {
+      const float ts = prev_t + (t - prev_t) * prev_f / (prev_f - f);
+      const Float3 ps = o + dw * ts;
+      Float3 nrm;
+      // On the CPU the brick of this step's sample (near ps) spares look-ups; the GPU keeps
+      // its registers (as the short way, measured slower there).
+#if defined(__CUDA_ARCH__)
+      const typename VolumeView<Enc>::BrickHint near_hit{};
+#else
+      const typename VolumeView<Enc>::BrickHint& near_hit = hint;
+#endif
+      if (V.Gradient(ps, &nrm, near_hit)) {
+        hit.vertex = ps;
+        hit.normal = nrm;
+        hit.depth = ts * dc.z;
+        Float3 rad;
+        float nrv;
+        if (V.SampleRadiance(ps, &rad, &nrv, near_hit)) {
+          hit.radiance = rad;
+          hit.nr = nrv;
+        }
+      }
+      return hit;
+    }
+    if (prev_valid && prev_f < 0.f && f > 0.f) return hit;  // back face: seen from behind
+    prev_f = f;
+    prev_t = t;
+    prev_valid = true;
+    // A sample at the truncation (f near 1) is at least the truncation distance in front of
+    // any surface: the next may be a whole truncation on. Nearer, 0.8 of the distance.
+    const float step = f > 0.99f ? trunc : 0.8f * f * trunc;
+    t += 0.8f * vs > step ? 0.8f * vs : step;
+  }
+  return hit;
+}
+
+}  // namespace hdrf::volume
