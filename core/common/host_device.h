@@ -27,6 +27,8 @@
 #endif
 #if defined(__CUDA_ARCH__)
 #define HDRF_UNROLL_HOST _Pragma("unroll")
+#elif defined(__CUDACC__)
+#define HDRF_UNROLL_HOST  // nvcc's host pass: its front end does not know GCC's pragma
 #else
 #define HDRF_UNROLL_HOST _Pragma("GCC unroll 8")
 #endif

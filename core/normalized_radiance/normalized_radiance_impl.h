@@ -31,20 +31,32 @@ HDRF_HD float NrCellMean(ImageView<const float> lum, int x, int y, int f) {
 struct NrIntegrals {
   ImageView<double> cnt, s1, s2;
 };
+// Both passes read a few entries ahead of their sums (kNrAhead at a time): the reads do not
+// wait on the stores before them, while the sums run in the same order (the same bits). On
+// the GPU a column's thread otherwise waited on each entry in turn (57 us at 640x480 on an
+// H100, of a 110 us stage).
+inline constexpr int kNrAhead = 8;
 HDRF_HD void NrRowPass(ImageView<const float> cells, NrIntegrals in, int y) {
   double c = 0, a = 0, b = 0;
   in.cnt(0, y + 1) = 0;
   in.s1(0, y + 1) = 0;
   in.s2(0, y + 1) = 0;
-  for (int x = 0; x < cells.width; ++x) {
-    const double m = cells(x, y);
-    const double m2 = m * m;
-    c += m > 0 ? 1.0 : 0.0;
-    a += m;
-    b += m2;
-    in.cnt(x + 1, y + 1) = c;
-    in.s1(x + 1, y + 1) = a;
-    in.s2(x + 1, y + 1) = b;
+  for (int x0 = 0; x0 < cells.width; x0 += kNrAhead) {
+    float m[kNrAhead];
+    HDRF_UNROLL
+    for (int k = 0; k < kNrAhead; ++k) m[k] = x0 + k < cells.width ? cells(x0 + k, y) : 0.f;
+    HDRF_UNROLL
+    for (int k = 0; k < kNrAhead; ++k) {
+      if (x0 + k >= cells.width) break;
+      const double v = m[k];
+      const double v2 = v * v;
+      c += v > 0 ? 1.0 : 0.0;
+      a += v;
+      b += v2;
+      in.cnt(x0 + k + 1, y + 1) = c;
+      in.s1(x0 + k + 1, y + 1) = a;
+      in.s2(x0 + k + 1, y + 1) = b;
+    }
   }
 }
 HDRF_HD void NrColumnPass(NrIntegrals in, int x) {
@@ -52,13 +64,26 @@ HDRF_HD void NrColumnPass(NrIntegrals in, int x) {
   in.s1(x, 0) = 0;
   in.s2(x, 0) = 0;
   double c = 0, a = 0, b = 0;
-  for (int y = 1; y < in.cnt.height; ++y) {
-    c += in.cnt(x, y);
-    a += in.s1(x, y);
-    b += in.s2(x, y);
-    in.cnt(x, y) = c;
-    in.s1(x, y) = a;
-    in.s2(x, y) = b;
+  const int h = in.cnt.height;
+  for (int y0 = 1; y0 < h; y0 += kNrAhead) {
+    double dc[kNrAhead], da[kNrAhead], db[kNrAhead];
+    HDRF_UNROLL
+    for (int k = 0; k < kNrAhead; ++k) {
+      const bool in_range = y0 + k < h;
+      dc[k] = in_range ? in.cnt(x, y0 + k) : 0.0;
+      da[k] = in_range ? in.s1(x, y0 + k) : 0.0;
+      db[k] = in_range ? in.s2(x, y0 + k) : 0.0;
+    }
+    HDRF_UNROLL
+    for (int k = 0; k < kNrAhead; ++k) {
+      if (y0 + k >= h) break;
+      c += dc[k];
+      a += da[k];
+      b += db[k];
+      in.cnt(x, y0 + k) = c;
+      in.s1(x, y0 + k) = a;
+      in.s2(x, y0 + k) = b;
+    }
   }
 }
 // 3. Local mean and std over the patch (radius r cells) around cell (x, y); 0 where fewer

@@ -187,6 +187,7 @@ class CudaBackend final : public Backend {
     }
     volume::RaycastArgs a{cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m};
     if (guided_) a.start = guide_.view();
+    a.SetBox(volume_.Bounds());
     volume_.Raycast(a, render_.views());
     render_pose_ = T;
     has_render_ = true;

@@ -41,7 +41,7 @@ class TermBatch {
 
   void Flush() {
     if (n_ == 0) return;
-    for (int k = n_; k % kLanes != 0; ++k) {  // the last group filled with terms of weight 0
+    for (int k = n_; k % kLanes != 0 && k < kCapacity; ++k) {  // the last group filled with terms of weight 0
       for (int i = 0; i < 6; ++i) j_[i][k] = 0;
       w_[k] = wr_[k] = 0;
     }

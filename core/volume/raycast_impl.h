@@ -3,6 +3,8 @@
 // volume_impl.h.
 #pragma once
 
+#include <array>
+
 #include "volume/volume_impl.h"
 
 namespace hdrf::volume {
@@ -15,7 +17,36 @@ struct RaycastArgs {
   // Where the rays may start (raycast_driver.h, RaycastGuide): per tile of kGuideTile x
   // kGuideTile pixels, a depth (m) no surface of the tile lies before; 0 or no image: near_m.
   ImageView<const float> start{};
+  // The world box of the allocated bricks (Volume::Bounds); rays are cast only inside it.
+  // box_lo > box_hi (the default): no box, the whole way from near to far.
+  Float3 box_lo{1, 1, 1}, box_hi{0, 0, 0};
+  void SetBox(const std::array<Float3, 2>& b) { box_lo = b[0], box_hi = b[1]; }
 };
+
+// Narrows [t0, t1] along the ray o + t d (inv_d: 1 / d per axis, 1e9 where d is about 0) to
+// the part inside the box; false where the ray misses it or the box is empty. No sample
+// outside the box is defined (its corners inside carry less than half its weight), so the
+// hits are those of the whole ray.
+HDRF_HD bool ClipToBox(const RaycastArgs& a, const Float3& o, const float inv_d[3], float* t0, float* t1) {
+  if (a.box_lo.x > a.box_hi.x) return true;
+  const float lo[3] = {a.box_lo.x, a.box_lo.y, a.box_lo.z}, hi[3] = {a.box_hi.x, a.box_hi.y, a.box_hi.z};
+  const float op[3] = {o.x, o.y, o.z};
+  if (lo[0] >= hi[0] || lo[1] >= hi[1] || lo[2] >= hi[2]) return false;  // no bricks
+  float enter = *t0, leave = *t1;
+  for (int k = 0; k < 3; ++k) {
+    if (inv_d[k] == 1e9f) {  // parallel to this axis' faces: inside their slab or nowhere
+      if (op[k] < lo[k] || op[k] > hi[k]) return false;
+      continue;
+    }
+    const float ta = (lo[k] - op[k]) * inv_d[k], tb = (hi[k] - op[k]) * inv_d[k];
+    const float tn = ta < tb ? ta : tb, tf = ta < tb ? tb : ta;
+    enter = tn > enter ? tn : enter;
+    leave = tf < leave ? tf : leave;
+  }
+  *t0 = enter;
+  *t1 = leave;
+  return enter < leave;
+}
 inline constexpr int kGuideTile = 8;
 inline int GuideTiles(int pixels) { return (pixels + kGuideTile - 1) / kGuideTile; }  // tiles of a side
 struct RayHit {
@@ -32,15 +63,17 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));
   const Float3 dw = a.T_world_camera.Rotate(dc), o = a.T_world_camera.t;
   // The volume has no bounds: the ray runs from near (or from where its tile's guide says the
-  // surface can begin) to far, skipping empty space.
+  // surface can begin) to far, skipping empty space, and only where it crosses the box of the
+  // allocated bricks (nothing outside it can be hit).
   float t0 = a.near_m;
-  const float t1 = a.far_m;
+  float t1 = a.far_m;
   if (a.start.data) {
     const float d = a.start(x / kGuideTile, y / kGuideTile) / dc.z;  // depth -> distance along the ray
     t0 = d > t0 ? d : t0;
   }
   const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
                           fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
+  if (!ClipToBox(a, o, inv_d, &t0, &t1)) return hit;
   // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
   auto cell_exit = [&](const Float3& p, float cell, float t) {
     const float gp[3] = {p.x / cell, p.y / cell, p.z / cell};
@@ -56,6 +89,7 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   };
   float t = t0, prev_f = 1.f, prev_t = -1.f;
   bool prev_valid = false;
+  typename VolumeView<Enc>::BrickHint hint;  // the brick of the last step (steps are shorter than a brick)
   while (t < t1) {
     const Float3 p = o + dw * t;
     const Float3 g = p / bs;
@@ -64,9 +98,10 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     const int bx = FloorToInt(g.x), by = FloorToInt(g.y), bz = FloorToInt(g.z);
     // The brick first (one look-up where it is there, as near surfaces); where it is absent,
     // its group decides how far the ray may skip.
-    typename VolumeView<Enc>::BrickHint hint;
-    hint.bx = bx, hint.by = by, hint.bz = bz, hint.valid = true;
-    hint.slot = V.bricks.Find(BrickKey(bx, by, bz));
+    if (!hint.valid || bx != hint.bx || by != hint.by || bz != hint.bz) {
+      hint.bx = bx, hint.by = by, hint.bz = bz, hint.valid = true;
+      hint.slot = V.bricks.Find(BrickKey(bx, by, bz));
+    }
     if (hint.slot < 0) {
       const float cell = V.GroupAllocated(bx, by, bz) ? bs : 4 * bs;
       const float te = cell_exit(p, cell, t) + 0.01f * vs;
@@ -86,18 +121,22 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
       Float3 nrm;
       // On the CPU the brick of this step's sample (near ps) spares look-ups; the GPU keeps
       // its registers (as the short way, measured slower there).
+      // The CPU also takes the radiance from the cell's corners the normal found.
 #if defined(__CUDA_ARCH__)
       const typename VolumeView<Enc>::BrickHint near_hit{};
+      const Enc** cell = nullptr;
 #else
       const typename VolumeView<Enc>::BrickHint& near_hit = hint;
+      const Enc* corners[8];
+      const Enc** cell = corners;
 #endif
-      if (V.Gradient(ps, &nrm, near_hit)) {
+      if (V.Gradient(ps, &nrm, near_hit, cell)) {
         hit.vertex = ps;
         hit.normal = nrm;
         hit.depth = ts * dc.z;
         Float3 rad;
         float nrv;
-        if (V.SampleRadiance(ps, &rad, &nrv, near_hit)) {
+        if (cell && cell[0] ? V.SampleRadianceOfCell(ps, cell, &rad, &nrv) : V.SampleRadiance(ps, &rad, &nrv, near_hit)) {
           hit.radiance = rad;
           hit.nr = nrv;
         }

@@ -112,6 +112,7 @@ bool Volume::Allocate(std::uint64_t key) {
   table_.Insert(key, slot);
   const std::uint64_t g = GroupKey(bx, by, bz);
   if (groups_.Find(g) < 0) groups_.Insert(g, 1);
+  Extend({bx, by, bz});
   brick_coord_.push_back({bx, by, bz});
   stamp_.push_back(clock_);
   pool_.resize(pool_.size() + bytes);
@@ -159,7 +160,8 @@ void Volume::Assign(std::span<const std::uint8_t> pool, std::vector<std::array<i
     if (groups_.Find(g) < 0) groups_.Insert(g, 1);
   }
   pool_ = GrowableBytes(pool);
-  brick_coord_ = std::move(coords);
+  brick_coord_.clear();
+  for (const auto& c : coords) Extend(c), brick_coord_.push_back(c);
   full_reason_ = std::move(full_reason);
   stamp_.assign(brick_coord_.size(), ++clock_);
 }
@@ -200,13 +202,17 @@ bool Volume::Store(const BrickSet& bricks) {
   return true;
 }
 
+void Volume::Extend(const std::array<int, 3>& c) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    lo_[k] = brick_coord_.empty() ? c[k] : std::min(lo_[k], c[k]);
+    hi_[k] = brick_coord_.empty() ? c[k] : std::max(hi_[k], c[k]);
+  }
+}
+
 std::array<Float3, 2> Volume::Bounds() const {
   if (brick_coord_.empty()) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
-  std::array<int, 3> lo = brick_coord_[0], hi = brick_coord_[0];
-  for (const auto& c : brick_coord_)
-    for (int k = 0; k < 3; ++k) lo[std::size_t(k)] = std::min(lo[std::size_t(k)], c[std::size_t(k)]), hi[std::size_t(k)] = std::max(hi[std::size_t(k)], c[std::size_t(k)]);
   const float bs = o_.voxel_m * kBrick;
-  return {Float3{lo[0] * bs, lo[1] * bs, lo[2] * bs}, Float3{(hi[0] + 1) * bs, (hi[1] + 1) * bs, (hi[2] + 1) * bs}};
+  return {Float3{lo_[0] * bs, lo_[1] * bs, lo_[2] * bs}, Float3{(hi_[0] + 1) * bs, (hi_[1] + 1) * bs, (hi_[2] + 1) * bs}};
 }
 
 IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, const PinholeCamera& cam, const Pose& T_world_camera,
@@ -336,6 +342,7 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, co
   r.depth = DepthImage(w, h);
   RaycastArgs a{cam, ToRigidTransform(T_wc), o_.raycast_near_m, o_.raycast_far_m};
   if (guide && !guide->empty()) a.start = View(*guide);
+  a.SetBox(Bounds());
   const RenderingViews out{View(r.vertex), View(r.normal), View(r.radiance), View(r.nr), View(r.depth)};
   VisitEncoding(o_.encoding, [&](auto tag) { RaycastInto(par::Host{}, view<decltype(tag)>(), a, out); });
   return r;

@@ -176,6 +176,8 @@ class Volume {
   BrickTable groups_;  // group key -> 1 (empty-space skipping)
   GrowableBytes pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
+  std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of brick_coord_ (Bounds)
+  void Extend(const std::array<int, 3>& c);
   std::vector<std::uint32_t> stamp_;  // per slot: the change clock of its last update
   std::uint32_t clock_ = 0;
   std::size_t max_bricks_ = 0;

@@ -215,6 +215,7 @@ struct HashView {
 // The volume's arrays, wherever they live, for voxel encoding V.
 template <typename V>
 struct VolumeView {
+  using Encoded = V;                     // the voxel encoding
   HashView bricks;                       // brick key -> pool slot
   HashView groups;                       // group key -> any brick allocated in the group
   V* pool = nullptr;                     // 512 voxels per allocated brick
@@ -327,19 +328,36 @@ struct VolumeView {
   // Trilinear radiance and NR over the corners with radiance weight; false if none has any.
   HDRF_HD bool SampleRadiance(Float3 p, Float3* rad, float* nr, const BrickHint& hint = BrickHint{},
                               bool short_way = true) const {
+    RadianceSum sum;
+    ForEachCorner(p, hint, short_way, [&](const V& v, float w) { sum.Add(v, w); });
+    return sum.Get(rad, nr);
+  }
+  // The same from the cell's eight corners already found (corner k = dx + 2 dy + 4 dz, as
+  // GradientOfVoxels gives them): the same corners, order and weights, so the same bits.
+  HDRF_HD bool SampleRadianceOfCell(Float3 p, const V* const corner[8], Float3* rad, float* nr) const {
+    const Float3 g = Grid(p);
+    const float ax = g.x - float(FloorToInt(g.x)), ay = g.y - float(FloorToInt(g.y)), az = g.z - float(FloorToInt(g.z));
+    const float wx[2] = {1 - ax, ax}, wy[2] = {1 - ay, ay}, wz[2] = {1 - az, az};
+    RadianceSum sum;
+    for (int k = 0; k < 8; ++k) sum.Add(*corner[k], wx[k & 1] * wy[(k >> 1) & 1] * wz[k >> 2]);
+    return sum.Get(rad, nr);
+  }
+  struct RadianceSum {
     Float3 r{0, 0, 0};
     float nn = 0.f, wsum = 0.f;
-    ForEachCorner(p, hint, short_way, [&](const V& v, float w) {
+    HDRF_HD void Add(const V& v, float w) {
       if (v.Wr() <= 0.f) return;
       r += v.Radiance() * w;
       nn += v.Nr() * w;
       wsum += w;
-    });
-    if (wsum < 1e-3f) return false;
-    *rad = r / wsum;
-    *nr = nn / wsum;
-    return true;
-  }
+    }
+    HDRF_HD bool Get(Float3* rad, float* nr) const {
+      if (wsum < 1e-3f) return false;
+      *rad = r / wsum;
+      *nr = nn / wsum;
+      return true;
+    }
+  };
 
   // Normal from the TSDF gradient: central differences of trilinear samples one voxel either
   // side of p along each axis. `hint` (a brick near p already looked up) spares look-ups in
@@ -348,9 +366,12 @@ struct VolumeView {
   // differences: each voxel is read once (32 reads, not the samples' 48) with one set of
   // weights (GradientOfVoxels); elsewhere the six samples, each renormalised over its
   // observed corners, as before (GradientOfSamples). The two agree to rounding.
-  HDRF_HD bool Gradient(Float3 p, Float3* nrm, const BrickHint& hint = BrickHint{}) const {
+  // `cell`, where given, receives the eight corners of p's cell when the 32 voxels gave the
+  // normal (SampleRadianceOfCell reads them), else cell[0] = nullptr.
+  HDRF_HD bool Gradient(Float3 p, Float3* nrm, const BrickHint& hint = BrickHint{}, const V** cell = nullptr) const {
     Float3 g;
-    if (!GradientOfVoxels(p, hint, &g) && !GradientOfSamples(p, hint, &g)) return false;
+    if (cell) cell[0] = nullptr;
+    if (!GradientOfVoxels(p, hint, &g, cell) && !GradientOfSamples(p, hint, &g)) return false;
     const float len = Length(g);
     if (len < 1e-6f) return false;
     *nrm = g / len;
@@ -369,7 +390,7 @@ struct VolumeView {
   // The cell (x..x+1, y..y+1, z..z+1) holding p and the voxels one step out along each axis
   // from its corners: the lines x-1..x+2 at the cell's four (y, z), then y-1 and y+2 at its
   // four (x, z), then z-1 and z+2 at its four (x, y). False where one is absent or unobserved.
-  HDRF_HD bool GradientOfVoxels(Float3 p, const BrickHint& hint, Float3* out) const {
+  HDRF_HD bool GradientOfVoxels(Float3 p, const BrickHint& hint, Float3* out, const V** cell = nullptr) const {
     const Float3 q = Grid(p);
     const int x = FloorToInt(q.x), y = FloorToInt(q.y), z = FloorToInt(q.z);
     const float ax = q.x - float(x), ay = q.y - float(y), az = q.z - float(z);
@@ -438,6 +459,12 @@ struct VolumeView {
       g.z += w * dz[k];
     }
     *out = g;
+    if (cell) {
+      for (int k = 0; k < 8; ++k) {
+        const int i = 1 + (k & 1), j = 1 + ((k >> 1) & 1), l = 1 + (k >> 2);
+        cell[k] = &pool[long(slot[ox[i] + 2 * oy[j] + 4 * oz[l]]) * 512 + lz[l] + ly[j] * 8 + lx[i]];
+      }
+    }
     return true;
   }
 };

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
+#include <utility>
 
 #include "common/error.h"
 #include "support/sim_frames.h"
@@ -165,6 +167,41 @@ TEST(NormalizedRadianceSteps, MatchBruteForceOnASmallImage) {
   EXPECT_FLOAT_EQ(v, 2.f);
   NrPixel(View(one), View(ms), View(flat), 2, 0.1f, 0, 0, &v, nullptr, nullptr);
   EXPECT_FLOAT_EQ(v, 4.f);  // (14 - 10) / (0.1 * 10)
+}
+
+// The integral images on grids wider and taller than the passes' read-ahead (with a part
+// chunk at each end): every entry is the running sums written out (along the row, then
+// down the column, in that order), bit for bit; cells without data (0) are not counted.
+TEST(NormalizedRadianceSteps, IntegralImagesAreTheRunningSumsInOrder) {
+  for (const auto [w, h] : {std::pair{37, 29}, std::pair{8, 9}, std::pair{1, 17}, std::pair{16, 1}}) {
+    Image<float> cells(w, h);
+    std::uint32_t state = 99u + std::uint32_t(w * 131 + h);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      state = state * 1664525u + 1013904223u;
+      cells[i] = (state >> 28) == 0 ? 0.f : float(state >> 8) / float(1u << 24) * 7.f;  // some without data
+    }
+    Image<double> cnt(w + 1, h + 1), s1(w + 1, h + 1), s2(w + 1, h + 1);
+    const NrIntegrals in{View(cnt), View(s1), View(s2)};
+    for (int y = 0; y < h; ++y) NrRowPass(View(cells), in, y);
+    for (int x = 0; x <= w; ++x) NrColumnPass(in, x);
+    long differ = 0;
+    for (int X = 0; X <= w; ++X)
+      for (int Y = 0; Y <= h; ++Y) {
+        double c = 0, a = 0, b = 0;
+        for (int y = 0; y < Y; ++y) {
+          double rc = 0, ra = 0, rb = 0;
+          for (int x = 0; x < X; ++x) {
+            const double v = cells(x, y);
+            rc += v > 0 ? 1.0 : 0.0;
+            ra += v;
+            rb += v * v;
+          }
+          c += rc, a += ra, b += rb;
+        }
+        differ += cnt(X, Y) != c || s1(X, Y) != a || s2(X, Y) != b;
+      }
+    EXPECT_EQ(differ, 0) << w << "x" << h;
+  }
 }
 
 }  // namespace

@@ -247,7 +247,9 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
 // differences (GradientOfSamples) to rounding wherever it is defined, for every encoding,
 // at points around the surface; where a voxel it needs is unobserved it declines and
 // Gradient takes the six samples.
-TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
+// The ray cast's normal from the 32 voxels agrees with the six samples' differences, and
+// the radiance read from the corners it found is the sampled radiance bit for bit.
+TEST(Volume, GradientOfVoxelsMatchesTheSamplesAndItsCellTheRadiance) {
   const auto frames = Frames(6, sim::AeMode::kFixed);
   const PinholeCamera cam = sim::SimCamera(320, 240);
   const Pose T = frames[0].T_world_camera.inverse() * frames.back().T_world_camera;
@@ -257,7 +259,7 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
       const volume::VoxelEncoding enc = vo.encoding;
       std::uint32_t state = 777u;
       auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
-      long both = 0, samples_only = 0, voxels_only = 0, differ = 0, fell_back = 0;
+      long both = 0, samples_only = 0, voxels_only = 0, differ = 0, fell_back = 0, radiance_same = 0, with_radiance = 0;
       double worst = 0;
       for (int i = 0; i < 100000; ++i) {
         const int x = int(uniform() * 319.f), y = int(uniform() * 239.f);
@@ -268,7 +270,15 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
         const Float3 p{float(pw.x()), float(pw.y()), float(pw.z())};
         const typename View::BrickHint none;
         Float3 ga, gb, n;
-        const bool a = vv.GradientOfVoxels(p, none, &ga), b = vv.GradientOfSamples(p, none, &gb);
+        const typename View::Encoded* cell[8] = {};
+        const bool a = vv.GradientOfVoxels(p, none, &ga, cell), b = vv.GradientOfSamples(p, none, &gb);
+        if (a) {
+          Float3 r1{-1, -1, -1}, r2{-2, -2, -2};
+          float n1 = -1, n2 = -2;
+          const bool s1 = vv.SampleRadianceOfCell(p, cell, &r1, &n1), s2 = vv.SampleRadiance(p, &r2, &n2);
+          with_radiance += s2;
+          radiance_same += s1 == s2 && (!s1 || (std::memcmp(&r1, &r2, sizeof r1) == 0 && std::memcmp(&n1, &n2, sizeof n1) == 0));
+        }
         if (a && b) {
           ++both;
           // Rounding: the samples' own positions p +- one voxel round in grid units (hundreds
@@ -292,6 +302,8 @@ TEST(Volume, GradientOfVoxelsIsTheSixSamplesDifferences) {
       EXPECT_EQ(voxels_only, 0);  // where all 32 voxels are observed every sample is defined
       EXPECT_GT(samples_only, 0);
       EXPECT_EQ(fell_back, samples_only);
+      EXPECT_GT(with_radiance, 10000);
+      EXPECT_EQ(radiance_same, both + voxels_only);  // at every point the voxels' way took
   });
 }
 
