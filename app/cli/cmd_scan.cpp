@@ -173,6 +173,7 @@ Command AddScanCommand(CLI::App& app) {
     pipeline::ScanSession& session = *owned;
     pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
+    if (!pipe.settings_note().empty()) std::fprintf(stderr, "scan: note: %s\n", pipe.settings_note().c_str());
     if (o.volume.gpu_memory_mb > 0 && pipe.device() != Device::kCuda)
       std::fprintf(stderr, "scan: note: volume.gpu_memory_mb applies on the GPU; on the CPU the whole model stays in "
                            "host memory (volume.max_memory_mb)\n");
@@ -317,7 +318,7 @@ Command AddScanCommand(CLI::App& app) {
                      {"waiting_frames", session.count(pipeline::FrameState::kWaiting)},
                      {"unconfirmed_frames", session.count(pipeline::FrameState::kConfirming)},
                      {"relocalisations", session.relocalisations()},
-                     {"options", json::parse(io::PipelineOptionsToJson(o))},
+                     {"options", json::parse(io::PipelineOptionsToJson(pipe.options()))},  // as used (the frames may lower some)
                      {"mean_ms", {{"convert", mean.convert}, {"normalize", mean.normalize}, {"track", mean.track},
                                   {"compensate", mean.compensate}, {"integrate", mean.integrate},
                                   {"raycast", mean.raycast}, {"total", mean.total()}}},

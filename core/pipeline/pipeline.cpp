@@ -41,6 +41,13 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
                    const SensorInfo& sensor)
     : o_((options.Check(), options)), cam_(camera), reloc_(options.reloc) {
   if (!camera.Valid()) throw SettingError("camera", "intrinsics must be positive");
+  if (const int usable = tracking::UsableLevels(o_.tracker.levels, camera.width, camera.height); usable < o_.tracker.levels) {
+    settings_note_ = "tracker.levels " + std::to_string(o_.tracker.levels) + " lowered to " + std::to_string(usable) +
+                     " for " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                     " frames (a pyramid level under " + std::to_string(tracking::kMinCoarsestWidth) + "x" +
+                     std::to_string(tracking::kMinCoarsestHeight) + " pixels misleads the tracker)";
+    o_.tracker.levels = usable;
+  }
   if (!sensor.response)
     throw Error("the sensor has no response calibration (sensor.json 'response'); calibrate it "
                 "with hdrfusion calibrate, or pass --response srgb to assume an sRGB camera");

@@ -128,6 +128,8 @@ class Pipeline {
   Device device() const { return device_; }  // where the engine actually runs
   // Why the engine runs elsewhere than asked ("" when it runs where asked).
   const std::string& device_note() const { return device_note_; }
+  // A setting the frames' size made the pipeline change (empty if none), said once.
+  const std::string& settings_note() const { return settings_note_; }
   const Pose& pose() const { return pose_; }
   int frames() const { return index_; }
   VolumeStats volume_stats() const;
@@ -164,7 +166,7 @@ class Pipeline {
   radiometry::PcfTables pcf_;
   std::unique_ptr<Backend> backend_;
   Device device_ = Device::kCpu;
-  std::string device_note_;
+  std::string device_note_, settings_note_;
   bool reference_from_model_ = true;       // else the previous tracked frame
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction

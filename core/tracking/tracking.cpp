@@ -30,6 +30,12 @@ const char* TrackerName(TrackerKind k) {
   return "?";
 }
 
+int UsableLevels(int requested, int width, int height) {
+  int levels = 1;
+  while (levels < requested && (width >> levels) >= kMinCoarsestWidth && (height >> levels) >= kMinCoarsestHeight) ++levels;
+  return levels;
+}
+
 void TrackerOptions::Check() const {
   if (levels < 1 || levels > 4) throw SettingError("tracker.levels", "must be 1 to 4");
   for (int i = 0; i < levels; ++i)

@@ -110,6 +110,15 @@ struct Live {
   std::vector<LiveLevel> levels;  // finest first
 };
 
+// The most pyramid levels, at most `requested`, whose coarsest image is still at least
+// kMinCoarsestWidth x kMinCoarsestHeight pixels (at least one level). A coarser one has too
+// few pixels for the local statistics of normalized radiance and the depth it needs: at
+// 160x120 a third level (40x30) lost the built-in room from frame 610 on (884 of 2000 frames
+// lost, against none with two levels). Cautious: 320x240 with a fourth level (also 40x30)
+// fused all of 800 frames; the pipeline says when it lowers the setting.
+inline constexpr int kMinCoarsestWidth = 80, kMinCoarsestHeight = 60;
+int UsableLevels(int requested, int width, int height);
+
 // Builds pyramid levels: depth halved by DownsampleDepth, intensity and weight by 2x2 means;
 // normals undefined across depth jumps above max_normal_jump_m.
 Live MakeLive(const DepthImage& depth_m, const Image<float>& intensity, const Image<float>& weight,
