@@ -99,7 +99,7 @@ class DeviceVolume {
   DeviceBuffer<std::uint8_t> dirty_;  // per slot: changed since the last CopyChanged
   std::unordered_set<std::uint64_t> host_dirty_;  // bricks moved out before they were copied
   int allocated_ = 0, capacity_ = 0, last_visible_ = 0;
-  std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of the allocated bricks
+  BrickBox box_;  // of every brick allocated since the last Upload
   std::unordered_map<std::uint64_t, std::vector<std::uint8_t>> host_;  // bricks moved out: key -> voxels
   std::vector<int> last_seen_;  // per slot: the frame that last updated it
   int frame_ = 0;

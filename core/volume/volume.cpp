@@ -112,7 +112,7 @@ bool Volume::Allocate(std::uint64_t key) {
   table_.Insert(key, slot);
   const std::uint64_t g = GroupKey(bx, by, bz);
   if (groups_.Find(g) < 0) groups_.Insert(g, 1);
-  Extend({bx, by, bz});
+  box_.Add(bx, by, bz);
   brick_coord_.push_back({bx, by, bz});
   stamp_.push_back(clock_);
   pool_.resize(pool_.size() + bytes);
@@ -160,8 +160,9 @@ void Volume::Assign(std::span<const std::uint8_t> pool, std::vector<std::array<i
     if (groups_.Find(g) < 0) groups_.Insert(g, 1);
   }
   pool_ = GrowableBytes(pool);
-  brick_coord_.clear();
-  for (const auto& c : coords) Extend(c), brick_coord_.push_back(c);
+  brick_coord_ = std::move(coords);
+  box_ = {};
+  for (const auto& c : brick_coord_) box_.Add(c[0], c[1], c[2]);
   full_reason_ = std::move(full_reason);
   stamp_.assign(brick_coord_.size(), ++clock_);
 }
@@ -202,18 +203,7 @@ bool Volume::Store(const BrickSet& bricks) {
   return true;
 }
 
-void Volume::Extend(const std::array<int, 3>& c) {
-  for (std::size_t k = 0; k < 3; ++k) {
-    lo_[k] = brick_coord_.empty() ? c[k] : std::min(lo_[k], c[k]);
-    hi_[k] = brick_coord_.empty() ? c[k] : std::max(hi_[k], c[k]);
-  }
-}
-
-std::array<Float3, 2> Volume::Bounds() const {
-  if (brick_coord_.empty()) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
-  const float bs = o_.voxel_m * kBrick;
-  return {Float3{lo_[0] * bs, lo_[1] * bs, lo_[2] * bs}, Float3{(hi_[0] + 1) * bs, (hi_[1] + 1) * bs, (hi_[2] + 1) * bs}};
-}
+std::array<Float3, 2> Volume::Bounds() const { return box_.World(o_.voxel_m * kBrick); }
 
 IntegrateArgs Volume::MakeIntegrateArgs(const VolumeOptions& o, const PinholeCamera& cam, const Pose& T_world_camera,
                                         float radiance_scale) {

@@ -4,6 +4,7 @@
 // follows the observed surface wherever the camera goes.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -77,6 +78,27 @@ struct BrickSet {
   std::vector<std::array<int, 3>> coords;
   std::vector<std::uint8_t> voxels;
   std::size_t size() const { return coords.size(); }
+};
+
+// The range of the brick coordinates added since it was made, and its world box (the
+// volume's Bounds on either device: the ray cast casts only inside it).
+struct BrickBox {
+  std::array<int, 3> lo{}, hi{};
+  bool empty = true;
+  void Add(int x, int y, int z) {
+    const std::array<int, 3> c = {x, y, z};
+    for (std::size_t k = 0; k < 3; ++k) {
+      lo[k] = empty ? c[k] : std::min(lo[k], c[k]);
+      hi[k] = empty ? c[k] : std::max(hi[k], c[k]);
+    }
+    empty = false;
+  }
+  // From the first brick's low corner to the last one's high corner; all zero when empty.
+  std::array<Float3, 2> World(float brick_m) const {
+    if (empty) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
+    return {Float3{lo[0] * brick_m, lo[1] * brick_m, lo[2] * brick_m},
+            Float3{(hi[0] + 1) * brick_m, (hi[1] + 1) * brick_m, (hi[2] + 1) * brick_m}};
+  }
 };
 
 class Volume {
@@ -176,8 +198,7 @@ class Volume {
   BrickTable groups_;  // group key -> 1 (empty-space skipping)
   GrowableBytes pool_;  // 512 encoded voxels per brick
   std::vector<std::array<int, 3>> brick_coord_;
-  std::array<int, 3> lo_{}, hi_{};  // brick coordinate range of brick_coord_ (Bounds)
-  void Extend(const std::array<int, 3>& c);
+  BrickBox box_;  // of brick_coord_ (Bounds)
   std::vector<std::uint32_t> stamp_;  // per slot: the change clock of its last update
   std::uint32_t clock_ = 0;
   std::size_t max_bricks_ = 0;

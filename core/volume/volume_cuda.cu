@@ -427,6 +427,7 @@ void DeviceVolume::Upload(const Volume& v) {
     cuda::CopyHostToDevice(pool_.data(), v.pool().data() + std::size_t(first) * B, std::size_t(on_gpu) * B);
     cuda::CopyHostToDevice(coords_.data(), all.data() + first, std::size_t(on_gpu) * sizeof(BrickCoord));
   }
+  box_ = {};
   if (n > 0) Extend(all.data(), n);
   allocated_ = on_gpu;
   frame_ = 0;
@@ -478,19 +479,12 @@ BrickSet DeviceVolume::CopyChanged() {
 }
 
 void DeviceVolume::Extend(const BrickCoord* c, int n) {
-  for (int i = 0; i < n; ++i) {
-    const std::array<int, 3> p = {c[i].x, c[i].y, c[i].z};
-    for (std::size_t k = 0; k < 3; ++k) {
-      lo_[k] = allocated_ + i == 0 ? p[k] : std::min(lo_[k], p[k]);
-      hi_[k] = allocated_ + i == 0 ? p[k] : std::max(hi_[k], p[k]);
-    }
-  }
+  for (int i = 0; i < n; ++i) box_.Add(c[i].x, c[i].y, c[i].z);
 }
 
 std::array<Float3, 2> DeviceVolume::Bounds() const {
   if (allocated_ == 0) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
-  const float bs = options().voxel_m * kBrick;
-  return {Float3{lo_[0] * bs, lo_[1] * bs, lo_[2] * bs}, Float3{(hi_[0] + 1) * bs, (hi_[1] + 1) * bs, (hi_[2] + 1) * bs}};
+  return box_.World(options().voxel_m * kBrick);
 }
 
 }  // namespace hdrf::volume
