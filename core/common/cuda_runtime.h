@@ -34,6 +34,13 @@ void* Malloc(std::size_t bytes);
 void Free(void* ptr) noexcept;
 void CopyHostToDevice(void* dst, const void* src, std::size_t bytes);
 void CopyDeviceToHost(void* dst, const void* src, std::size_t bytes);
+// Queues a copy of `bytes` of ordinary host memory `src` to the device's `dst` through
+// `staging` (pinned host memory as large): the CPU's threads copy pieces into the staging
+// memory, and each piece is queued for the GPU (on the default stream) as soon as it is
+// there, so the bus carries the first pieces while the CPU copies the rest. Returns once
+// every piece is queued; the staging memory is in use until the default stream reaches
+// this point.
+void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes);
 void Synchronize();
 }  // namespace cuda
 

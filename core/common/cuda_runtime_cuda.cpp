@@ -1,8 +1,13 @@
 // CUDA runtime entry points for a build with the CUDA backend (plain C++ against cudart).
 #include <cuda_runtime_api.h>
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstring>
+#include <memory>
 
 #include "common/cuda_check.h"
 #include "common/cuda_runtime.h"
@@ -85,6 +90,46 @@ void CopyHostToDevice(void* dst, const void* src, std::size_t bytes) {
 }
 void CopyDeviceToHost(void* dst, const void* src, std::size_t bytes) {
   HDRF_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost));
+}
+void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes) {
+  // Pieces of 128 KiB, dealt out to the threads in turn (the first pieces are copied first);
+  // the calling thread queues each piece for the GPU, in order, as soon as it is in the
+  // staging memory (only it calls CUDA: no driver lock contended, the caller's device).
+  constexpr std::size_t kPiece = std::size_t(128) << 10;
+  constexpr int kMaxThreads = 8;  // more copy no faster: the memory bus is the limit
+  const long pieces = long((bytes + kPiece - 1) / kPiece);
+  if (pieces == 0) return;
+  auto* d = static_cast<unsigned char*>(dst);
+  auto* st = static_cast<unsigned char*>(staging);
+  const auto* s = static_cast<const unsigned char*>(src);
+  const int threads = int(std::min<long>({pieces, long(omp_get_max_threads()), long(kMaxThreads)}));
+  std::unique_ptr<std::atomic<bool>[]> ready(new std::atomic<bool>[std::size_t(pieces)]);
+  for (long c = 0; c < pieces; ++c) ready[std::size_t(c)].store(false, std::memory_order_relaxed);
+  long queued = 0;
+  cudaError_t err = cudaSuccess;
+  auto queue_ready = [&](bool wait) {
+    while (queued < pieces) {
+      if (!ready[std::size_t(queued)].load(std::memory_order_acquire)) {
+        if (!wait) return;
+        continue;
+      }
+      const std::size_t at = std::size_t(queued) * kPiece;
+      if (err == cudaSuccess) err = cudaMemcpyAsync(d + at, st + at, std::min(kPiece, bytes - at), cudaMemcpyHostToDevice, 0);
+      ++queued;
+    }
+  };
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), n = omp_get_num_threads();
+    for (long c = t; c < pieces; c += n) {
+      const std::size_t at = std::size_t(c) * kPiece;
+      std::memcpy(st + at, s + at, std::min(kPiece, bytes - at));
+      ready[std::size_t(c)].store(true, std::memory_order_release);
+      if (t == 0) queue_ready(false);
+    }
+    if (t == 0) queue_ready(true);
+  }
+  HDRF_CUDA_CHECK(err);
 }
 void Synchronize() { HDRF_CUDA_CHECK(cudaDeviceSynchronize()); }
 }  // namespace cuda

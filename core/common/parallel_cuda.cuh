@@ -107,7 +107,10 @@ __global__ void __launch_bounds__(Reducer::kThreads)
   if (threadIdx.x < G * K) {
     const int k = threadIdx.x % K, grp = threadIdx.x / K;
     double s = 0;
-    for (int b = grp; b < int(gridDim.x); b += G) s += static_cast<volatile double*>(partial)[b * K + k];
+    // Loads through L2 (the other blocks' stores are there, not in this block's L1): unlike
+    // volatile loads, the compiler may issue them ahead of the additions, which keep their order.
+#pragma unroll 8
+    for (int b = grp; b < int(gridDim.x); b += G) s += __ldcg(partial + b * K + k);
     group_sum[grp][k] = s;
   }
   __syncthreads();

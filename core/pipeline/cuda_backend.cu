@@ -12,7 +12,6 @@
 #include "common/cuda_check.h"
 #include "common/device_buffer.h"
 #include "common/error.h"
-#include "common/parallel_copy.h"
 #include "exposure/exposure_gpu.h"
 #include "imaging/imaging_driver.h"
 #include "normalized_radiance/normalized_radiance_driver.h"
@@ -101,17 +100,15 @@ class CudaBackend final : public Backend {
   }
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
-    // Through pinned staging memory (the CPU's threads copy the frame there, then the GPU
-    // fetches it at full bus speed): a copy from ordinary memory went through the driver's
-    // own staging a piece at a time.
+    // Through pinned staging memory, piece by piece (the CPU's threads copy the frame there
+    // while the GPU fetches the pieces already copied at full bus speed): a copy from
+    // ordinary memory went through the driver's own staging a piece at a time.
     const std::size_t cb = color.size() * sizeof(Rgb8), db = depth_m.size() * sizeof(float);
     if (cb > stage_.color_bytes || db > stage_.depth_bytes)
       throw Error("the frame is larger than the camera the GPU pipeline was set up for");
     HDRF_CUDA_CHECK(cudaEventSynchronize(stage_.sent));  // the last frame has left the staging memory
-    ParallelCopy(stage_.color, color.data(), cb);
-    ParallelCopy(stage_.depth, depth_m.data(), db);
-    HDRF_CUDA_CHECK(cudaMemcpyAsync(color_.data(), stage_.color, cb, cudaMemcpyHostToDevice, 0));
-    HDRF_CUDA_CHECK(cudaMemcpyAsync(depth_raw_.data(), stage_.depth, db, cudaMemcpyHostToDevice, 0));
+    cuda::UploadThroughStaging(color_.data(), stage_.color, color.data(), cb);
+    cuda::UploadThroughStaging(depth_raw_.data(), stage_.depth, depth_m.data(), db);
     HDRF_CUDA_CHECK(cudaEventRecord(stage_.sent, 0));
     radiometry::ConvertFrameOnGpu(color_.view(), inverse_.data(), pcf_.data(), radiance_.view(), conf_.view(),
                                   maxconf_.view());
@@ -132,6 +129,7 @@ class CudaBackend final : public Backend {
   }
 
   void BuildLive() override {
+    valid_from_run_ = false;
     CopyD2D(live_[0]->depth, depth_);
     for (std::size_t l = 0; l < live_.size(); ++l) {
       const tracking::LiveLevelViews finer = l > 0 ? live_[l - 1]->views() : tracking::LiveLevelViews{};
@@ -147,10 +145,17 @@ class CudaBackend final : public Backend {
                                       const tracking::MotionPrior* prior) override {
     std::vector<tracking::GpuNormalEquations::Level> levels;
     for (std::size_t l = 0; l < live_.size(); ++l) levels.push_back({ref_[l]->view(), live_[l]->view()});
-    return sums_.RunOnDevice(levels, reference_pose_, initial, t, prior);
+    tracking::GaussNewtonRun run = sums_.RunOnDevice(levels, reference_pose_, initial, t, prior);
+    valid_from_run_ = true;
+    return run;
   }
-  long LiveValid() override { return sums_.CountLiveVertices(live_[0]->vertex.view()); }
-  long ReferenceValid() override { return sums_.CountReferenceVertices(ref_[0]->vertex.view()); }
+  // Counted inside the last tracker run where neither side has changed since.
+  long LiveValid() override {
+    return valid_from_run_ ? sums_.last_valid().live : sums_.CountLiveVertices(live_[0]->vertex.view());
+  }
+  long ReferenceValid() override {
+    return valid_from_run_ ? sums_.last_valid().reference : sums_.CountReferenceVertices(ref_[0]->vertex.view());
+  }
 
   exposure::ExposureEstimate EstimateExposure(const Pose& T) override {
     return exposure_.Estimate({render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_,
@@ -201,6 +206,7 @@ class CudaBackend final : public Backend {
   }
 
   void ReferenceFromRender(const Float3& clip) override {
+    valid_from_run_ = false;
     CopyD2D(ref_[0]->vertex, render_.vertex);
     CopyD2D(ref_[0]->normal, render_.normal);
     NormalizeRender(clip);
@@ -210,6 +216,7 @@ class CudaBackend final : public Backend {
     has_reference_ = true;
   }
   void ReferenceFromLive(const Pose& T) override {
+    valid_from_run_ = false;
     const LiveLevelD& L0 = *live_[0];
     tracking::PlaceInWorldOnGpu(L0.vertex.view(), L0.normal.view(), ToRigidTransform(T), ref_[0]->vertex.view(),
                                 ref_[0]->normal.view());
@@ -232,6 +239,7 @@ class CudaBackend final : public Backend {
     volume_.Upload(model);
     has_render_ = false;
     has_reference_ = false;
+    valid_from_run_ = false;
   }
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
     // On the GPU the extraction takes milliseconds: progress at its start and end only.
@@ -345,6 +353,7 @@ class CudaBackend final : public Backend {
   RenderD render_;
   Pose render_pose_ = Pose::Identity(), reference_pose_ = Pose::Identity();
   bool has_render_ = false, has_reference_ = false;
+  bool valid_from_run_ = false;  // LiveValid / ReferenceValid: the last tracker run's counts hold
   tracking::GpuNormalEquations sums_;
   exposure::GpuExposureEstimator exposure_;
   volume::DeviceVolume volume_;

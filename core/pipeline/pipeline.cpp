@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -266,6 +267,32 @@ double Pipeline::PredictedRatio(const FrameInput& in) const {
 void Pipeline::ReferenceFromModel(const Float3& clip) {
   backend_->ReferenceFromRender(clip);
   ref_clip_ = clip;
+  ref_pending_.reset();
+}
+
+void Pipeline::SettleKeyframe() {
+  if (!keyframe_.valid()) return;
+  RelocEntry e = keyframe_.get();
+  keyframe_ = {};
+  reloc_.Add(std::move(e));
+}
+
+bool Pipeline::HasRelocEntries() {
+  SettleKeyframe();
+  return !reloc_.entries().empty();
+}
+
+bool Pipeline::WantsKeyframe(const Pose& T) {
+  // Near the entry still being made: not wanted, as if it were in (unless adding it thins
+  // the entries, which may drop it or the one near).
+  if (keyframe_.valid() && !reloc_.Full() && reloc_.Near(keyframe_pose_, T)) return false;
+  SettleKeyframe();
+  return reloc_.Wants(T);
+}
+
+Backend& Pipeline::backend() {
+  if (ref_pending_) ReferenceFromModel(*ref_pending_);
+  return *backend_;
 }
 
 Float3 Pipeline::ReferenceClip(const FrameInput& in) const {
@@ -331,8 +358,12 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // The model's radiance the live frame would clip is left out of the reference's normalized
   // radiance as the live frame's clipped pixels are left out of its own.
   const Float3 clip = reference_from_model_ ? ReferenceClip(in) : kNoClip;
-  if (anchored_ && reference_from_model_ && lost_run_ == 0 && b.HasRender() && ClipChanged(ref_clip_, clip)) {
-    ReferenceFromModel(clip);
+  // The last frame's ray cast becomes the reference here, once this frame's clipping level
+  // is known (made at the end of the last frame, it was made again here whenever the
+  // exposure moved the level: every frame of an auto-exposure camera).
+  if (anchored_ && reference_from_model_ && lost_run_ == 0 && b.HasRender()) {
+    if (ref_pending_) ReferenceFromModel(ClipChanged(*ref_pending_, clip) ? clip : *ref_pending_);
+    else if (ClipChanged(ref_clip_, clip)) ReferenceFromModel(clip);
   }
   bool fuse = false, accepted = false, searched = false;
   Verdict verdict;
@@ -387,7 +418,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
         first = false;
       }
     }
-    if ((recovering_ || !verdict.why.empty()) && o_.reloc.enabled && reference_from_model_ && !reloc_.entries().empty()) {
+    if ((recovering_ || !verdict.why.empty()) && o_.reloc.enabled && reference_from_model_ && HasRelocEntries()) {
       searched = true;
       code = MakeRelocCode(in.color, in.depth_m, inverse_);
       // Each candidate view is tracked from its own pose; the nearest one also from poses
@@ -492,9 +523,21 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       if (UsesPhoto(o_.tracker.kind)) Push(photo_residuals_, rep.tracking.rms_photo);
     }
     if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
-    if (o_.reloc.enabled && reloc_.Wants(pose_))
-      reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),
-                  Thumbnail(in.color)});
+    if (o_.reloc.enabled && WantsKeyframe(pose_)) {
+      SettleKeyframe();
+      if (code.empty() && device_ == Device::kCuda) {
+        // The GPU runs the frame; the CPU's cores are free: the entry is made beside the
+        // next frames (the same entry, added before any other and before it is looked up).
+        keyframe_pose_ = pose_;
+        keyframe_ = std::async(std::launch::async, [frame = rep.index, T = pose_, color = in.color.Clone(),
+                                                    depth = in.depth_m.Clone(), inverse = &inverse_] {
+                      return RelocEntry(frame, T, MakeRelocCode(color, depth, *inverse), Thumbnail(color));
+                    }).share();
+      } else {
+        reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),
+                    Thumbnail(in.color)});
+      }
+    }
   }
   rep.allocated_bricks = b.AllocatedBricks();
   if (!full_reported_ && rep.fused && b.VolumeFull()) {
@@ -508,7 +551,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   if (rep.fused || accepted || searched || !b.HasRender())
     b.Raycast(pose_, rep.fused ? Backend::RaycastStart::kDepth : Backend::RaycastStart::kNear);
   if (reference_from_model_) {
-    ReferenceFromModel(clip);
+    ref_pending_ = clip;  // made when the next frame needs it (or the backend is looked at)
   } else if (accepted || !b.HasReference()) {
     b.ReferenceFromLive(pose_);
     reference_color_ = in.color.Clone();

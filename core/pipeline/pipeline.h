@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -156,8 +157,9 @@ class Pipeline {
   // voxel size, truncation or encoding differ from the options, or where a frame-to-frame
   // scan's point has no reference frame. Call on a fresh Pipeline.
   void Resume(const volume::Volume& model, const ResumePoint& point);
-  // The stages themselves, for the backend parity tests.
-  Backend& backend() { return *backend_; }
+  // The stages themselves, for the backend parity tests (the reference made first where
+  // the last frame left it to the next).
+  Backend& backend();
 
  private:
   PipelineOptions o_;
@@ -185,12 +187,22 @@ class Pipeline {
   std::vector<double> icp_residuals_, photo_residuals_, exposure_drifts_;  // of the last fused frames, newest last
   int lost_run_ = 0;  // frames since the last accepted pose
   Relocaliser reloc_;
+  // A keyframe's relocalisation entry being made on another thread (CUDA engine), and its
+  // pose; SettleKeyframe() waits for it and adds it.
+  std::shared_future<RelocEntry> keyframe_;
+  Pose keyframe_pose_ = Pose::Identity();
+  void SettleKeyframe();
+  bool HasRelocEntries();              // (settles the keyframe first)
+  bool WantsKeyframe(const Pose& T);   // Relocaliser::Wants, with the keyframe being made
   // Clipping: the radiance at which the live frame reads 255, per channel (live units), the
   // last accepted frame's exposure ratio, and the clipping level (model units) the current
   // reference was normalized with (infinite: none).
   Float3 live_clip_{};
   double last_ratio_ = 0;
   Float3 ref_clip_{};
+  // The clipping level of the reference the last frame's ray cast is to become, made when
+  // the next frame's own level is known (none: the reference is up to date).
+  std::optional<Float3> ref_pending_;
   double PredictedRatio(const FrameInput& in) const;  // model / live radiance before tracking (0: unknown)
   Float3 ReferenceClip(const FrameInput& in) const;   // the live frame's clipping level, model units
   void ReferenceFromModel(const Float3& clip);         // the reference from the ray cast, for `clip`
@@ -208,7 +220,11 @@ class Pipeline {
   static double Median(std::vector<double> v);
 
  public:
-  const Relocaliser& relocaliser() const { return reloc_; }
+  // The relocalisation entries (with a keyframe still being made added first).
+  const Relocaliser& relocaliser() {
+    SettleKeyframe();
+    return reloc_;
+  }
 };
 
 }  // namespace hdrf::pipeline

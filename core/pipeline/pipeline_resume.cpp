@@ -22,7 +22,13 @@ ResumePoint Pipeline::resume_point() const {
   p.photo_residuals = photo_residuals_;
   p.lost_run = lost_run_;
   p.exposure_drifts = exposure_drifts_;
-  p.reloc = reloc_.entries();
+  if (keyframe_.valid()) {  // with the entry still being made, as it will be added
+    Relocaliser r = reloc_;
+    r.Add(keyframe_.get());
+    p.reloc = r.entries();
+  } else {
+    p.reloc = reloc_.entries();
+  }
   p.raycast_guide = backend_->RaycastGuide();
   if (!reference_from_model_) {
     p.reference_color = reference_color_.Clone();
@@ -78,6 +84,7 @@ void Pipeline::Resume(const volume::Volume& model, const ResumePoint& p) {
   if (reference_from_model_) {
     if (b.HasRender()) b.ReferenceFromRender(kNoClip);
     ref_clip_ = kNoClip;
+    ref_pending_.reset();
   } else {
     b.Convert(p.reference_color, p.reference_depth);
     b.Normalize();

@@ -104,16 +104,18 @@ ColorImage Thumbnail(const ColorImage& color, int width) {
 
 Relocaliser::Relocaliser(const RelocOptions& o) : o_((o.Check(), o)) {}
 
-bool Relocaliser::Wants(const Pose& T) const {
+bool Relocaliser::Near(const Pose& entry, const Pose& T) const {
   const double deg = 3.14159265358979 / 180.0;
-  for (const RelocEntry& e : entries_) {
-    // The relative pose's translation is as long as the gap between the two positions: an
-    // entry that far away is not near, whatever the turn (the pose product only for the rest).
-    if ((T.translation() - e.T_world_camera.translation()).norm() >= o_.min_translation_m * (1 + 1e-9)) continue;
-    const Pose d = e.T_world_camera.inverse() * T;
-    if (se3::TranslationNorm(d) < o_.min_translation_m && se3::RotationAngle(d) < o_.min_rotation_deg * deg)
-      return false;
-  }
+  // The relative pose's translation is as long as the gap between the two positions: an
+  // entry that far away is not near, whatever the turn (the pose product only for the rest).
+  if ((T.translation() - entry.translation()).norm() >= o_.min_translation_m * (1 + 1e-9)) return false;
+  const Pose d = entry.inverse() * T;
+  return se3::TranslationNorm(d) < o_.min_translation_m && se3::RotationAngle(d) < o_.min_rotation_deg * deg;
+}
+
+bool Relocaliser::Wants(const Pose& T) const {
+  for (const RelocEntry& e : entries_)
+    if (Near(e.T_world_camera, T)) return false;
   return true;
 }
 

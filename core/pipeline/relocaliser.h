@@ -67,6 +67,10 @@ class Relocaliser {
   explicit Relocaliser(const RelocOptions& o = {});
   // Whether a frame fused at this pose is far enough from every entry to be added.
   bool Wants(const Pose& T_world_camera) const;
+  // Whether an entry at `entry` is near enough to a frame at `T` to leave it out.
+  bool Near(const Pose& entry, const Pose& T) const;
+  // Whether adding one more entry drops every other one (options().max_entries).
+  bool Full() const { return int(entries_.size()) + 1 > o_.max_entries; }
   void Add(RelocEntry e);
   // The nearest entries to a code, best first (at most options().candidates).
   std::vector<const RelocEntry*> Candidates(const RelocCode& code) const;

@@ -20,6 +20,9 @@ namespace {
 struct Count1 {
   double v[1] = {0};
 };
+struct Count2 {
+  double v[2] = {0, 0};
+};
 
 // What changes from frame to frame (uploaded by the run's first step): the start, the
 // prior, and each level's term arguments (the pose's parts replaced iteration by iteration).
@@ -34,6 +37,7 @@ struct FrameParams {
 struct DeviceRun {
   PoseD T;
   int iterations, level_iterations[4];
+  double valid[2];  // the finest level's live pixels with depth, and reference pixels with a vertex
   GnSystem last;
   IcpArgs icp;
   PhotoArgs photo;
@@ -64,6 +68,17 @@ __device__ void SetPoseArgs(DeviceTrack* d, int level) {
   s.photo = photo;
 }
 __global__ void StartLevel(DeviceTrack* d, int level) { SetPoseArgs(d, level); }
+__global__ void KeepValid(DeviceTrack* d, const double* sums) {
+  d->run.valid[0] = sums[0];
+  d->run.valid[1] = sums[1];
+}
+
+// The counts CountLiveVertices and CountReferenceVertices make, in one pass.
+__device__ void CountValid(const IcpArgs& a, int x, int y, Count2& acc) {
+  acc.v[0] += a.live_vertex(x, y).z > 0.f ? 1.0 : 0.0;
+  const Float3 p = a.ref_vertex(x, y);
+  acc.v[1] += (p.x != 0.f || p.y != 0.f || p.z != 0.f) ? 1.0 : 0.0;
+}
 
 // One step from the level's sums (a kernel of its own: inside the sum's kernel its registers
 // would be the whole sum's), and whether the level goes on: fewer steps than its cap, the
@@ -101,6 +116,7 @@ struct GpuNormalEquations::Impl {
   cudaEvent_t ready = nullptr;
   cudaGraphExec_t graph = nullptr;
   GraphShape shape;
+  Valid valid;
   Impl() {
     HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceTrack)));
     HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
@@ -128,6 +144,12 @@ cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* h
   HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, kMode));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&d->frame, &host->frame, sizeof(FrameParams), cudaMemcpyHostToDevice, stream));
   StartRun<<<1, 1, 0, stream>>>(d);
+  const DeviceTrack* rd = d;
+  // The finest level's valid pixels (the tracking's judge weighs the matches against them).
+  reducer.SumOnDevice<Count2>(
+      g.width[0], g.height[0], [=] __device__(int x, int y, Count2& acc) { CountValid(rd->frame.icp[0], x, y, acc); },
+      stream);
+  KeepValid<<<1, 1, 0, stream>>>(d, reducer.device_sums());
   const bool use_icp = g.icp, use_photo = g.photo;
   for (int l = g.levels - 1; l >= 0; --l) {
     const int iters = g.iterations[std::size_t(g.levels - 1 - l)];
@@ -150,7 +172,6 @@ cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* h
     HDRF_CUDA_CHECK(cudaGraphAddNode(&loop, captured, deps, nullptr, n_deps, &p));
     HDRF_CUDA_CHECK(cudaStreamUpdateCaptureDependencies(stream, &loop, nullptr, 1, cudaStreamSetCaptureDependencies));
     HDRF_CUDA_CHECK(cudaStreamBeginCaptureToGraph(body_stream, p.conditional.phGraph_out[0], nullptr, nullptr, 0, kMode));
-    const DeviceTrack* rd = d;
     reducer.SumOnDevice<GnSystem>(
         g.width[std::size_t(l)], g.height[std::size_t(l)],
         [=] __device__(int x, int y, GnSystem& acc) {
@@ -224,8 +245,11 @@ GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels,
   run.last = r.last;
   run.iterations = r.iterations;
   for (int k = 0; k < 4; ++k) run.level_iterations[std::size_t(k)] = r.level_iterations[k];
+  m.valid = {long(r.valid[0]), long(r.valid[1])};
   return run;
 }
+
+GpuNormalEquations::Valid GpuNormalEquations::last_valid() const { return impl_->valid; }
 
 long GpuNormalEquations::CountLiveVertices(ImageView<const Float3> v) {
   const Count1 c = impl_->reducer.Sum<Count1>(v.width, v.height, [=] __device__(int x, int y, Count1& acc) {

@@ -23,9 +23,10 @@ class GpuNormalEquations {
   ~GpuNormalEquations();
   GnSystem Accumulate(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
                       const Pose& T_world_live, const TrackerOptions& o);
-  // The Gauss-Newton iterations of RunGaussNewton (tracking.h) with the step in the last
-  // block of each sum (gn_step.h): the pose stays on the device between iterations, the
-  // iterations are queued without waiting, and the result is read back once. `levels`:
+  // The Gauss-Newton iterations of RunGaussNewton (tracking.h), each level a loop node of a
+  // CUDA graph (one sum, then the step of gn_step.h): the pose stays on the device between
+  // iterations, and the result is read back once, with the finest level's valid pixels
+  // (last_valid()). `levels`:
   // finest first, each the reference's and the live frame's views.
   struct Level {
     ReferenceView ref;
@@ -35,6 +36,11 @@ class GpuNormalEquations {
                              const TrackerOptions& o, const MotionPrior* prior);
   long CountLiveVertices(ImageView<const Float3> vertex_c);       // with depth (z > 0)
   long CountReferenceVertices(ImageView<const Float3> vertex_w);  // any non-zero vertex
+  // Both counts of the finest level of the last RunOnDevice, made inside its run.
+  struct Valid {
+    long live = 0, reference = 0;
+  };
+  Valid last_valid() const;
 
  private:
   struct Impl;

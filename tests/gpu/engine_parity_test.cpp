@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -235,6 +236,13 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
       ExpectPosesClose(dev.T_world_camera, T, 5e-3, 5e-3, "device-stepped pose against the tracked one");
       EXPECT_EQ(dev.last.v[31], host.last.v[31]);
       EXPECT_EQ(dev.last.v[32], host.last.v[32]);
+      // The valid pixels the run counted (read back with it) against the CPU's counts.
+      const long live_valid = gpu.backend().LiveValid(), ref_valid = gpu.backend().ReferenceValid();
+      std::printf("  valid pixels counted in the run: live %ld, reference %ld\n", live_valid, ref_valid);
+      EXPECT_GT(live_valid, w * h / 4);
+      EXPECT_GT(ref_valid, w * h / 4);
+      EXPECT_EQ(live_valid, cpu.backend().LiveValid());
+      EXPECT_EQ(ref_valid, cpu.backend().ReferenceValid());
       // How long each takes (printed, for the benchmark notes; not asserted).
       auto time_of = [&](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -291,6 +299,24 @@ TEST(GpuParity, HundredFrameScanTrajectoriesAgree) {
               1e3 * worst_t, 1e3 * worst_r, lost_c, lost_g, 100 * ate_c, 100 * ate_g);
   EXPECT_LE(worst_t, 1e-3);
   EXPECT_EQ(lost_c, lost_g);
+  // Relocalisation entries: with CUDA made on another thread beside the scan, on the CPU
+  // within the frame; the same frames, codes and thumbnails, also in a resume point taken
+  // while the last one may still be in the making.
+  const ResumePoint point = gpu.resume_point();
+  const std::vector<RelocEntry>&ec = cpu.relocaliser().entries(), &eg = gpu.relocaliser().entries();
+  std::printf("relocalisation entries: cpu %zu, cuda %zu (resume point %zu)\n", ec.size(), eg.size(),
+              point.reloc.size());
+  EXPECT_GE(ec.size(), 3u);
+  ASSERT_EQ(ec.size(), eg.size());
+  EXPECT_EQ(point.reloc.size(), eg.size());
+  for (std::size_t i = 0; i < ec.size(); ++i) {
+    EXPECT_EQ(ec[i].frame, eg[i].frame) << "entry " << i;
+    EXPECT_EQ(ec[i].code.depth, eg[i].code.depth) << "entry " << i;
+    EXPECT_EQ(ec[i].code.shade, eg[i].code.shade) << "entry " << i;
+    EXPECT_EQ(ec[i].code.lit, eg[i].code.lit) << "entry " << i;
+    ASSERT_EQ(ec[i].thumbnail.size(), eg[i].thumbnail.size());
+    EXPECT_EQ(std::memcmp(ec[i].thumbnail.data(), eg[i].thumbnail.data(), ec[i].thumbnail.size() * sizeof(Rgb8)), 0);
+  }
   // The allocated region (the studio draws it) agrees to within a brick.
   const auto bc = cpu.volume_stats().bounds, bg = gpu.volume_stats().bounds;
   const float brick = 8 * o.volume.voxel_m;

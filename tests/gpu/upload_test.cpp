@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <omp.h>
+
+#include "common/cuda_runtime.h"
+
+namespace hdrf {
+namespace {
+
+// A frame's upload through staging memory: every byte arrives, at sizes around the pieces'
+// boundaries and with any number of CPU threads; the device bytes around it stay as they were.
+TEST(GpuUpload, EveryByteArrivesAtAnySizeAndThreadCount) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const std::size_t piece = std::size_t(128) << 10;
+  const int threads = omp_get_max_threads();
+  for (int n : {1, 2, 5, threads}) {
+    omp_set_num_threads(n);
+    for (std::size_t bytes : {std::size_t(0), std::size_t(1), piece - 1, piece, piece + 1, 7 * piece + 17,
+                              std::size_t(640 * 480 * 4)}) {
+      std::vector<std::uint8_t> src(bytes), staging(bytes), back(bytes + 64), guard(bytes + 64, 0xAB);
+      for (std::size_t i = 0; i < bytes; ++i) src[i] = std::uint8_t((i * 2654435761u) >> 13);
+      void* d = cuda::Malloc(bytes + 64);
+      cuda::CopyHostToDevice(d, guard.data(), guard.size());
+      cuda::UploadThroughStaging(static_cast<std::uint8_t*>(d) + 32, staging.data(), src.data(), bytes);
+      cuda::CopyDeviceToHost(back.data(), d, back.size());
+      cuda::Free(d);
+      EXPECT_EQ(bytes == 0 ? 0 : std::memcmp(back.data() + 32, src.data(), bytes), 0) << bytes << " bytes, " << n << " threads";
+      EXPECT_EQ(bytes == 0 ? 0 : std::memcmp(staging.data(), src.data(), bytes), 0) << bytes << " bytes";
+      for (std::size_t i = 0; i < 32; ++i) {
+        EXPECT_EQ(back[i], 0xAB) << bytes;
+        EXPECT_EQ(back[32 + bytes + i], 0xAB) << bytes;
+      }
+    }
+  }
+  omp_set_num_threads(threads);
+}
+
+}  // namespace
+}  // namespace hdrf
