@@ -50,6 +50,10 @@ struct EngineBenchRow {
   // The slow frames a mean hides (a stall while the model grows, say): the stages' sum of
   // the timed frames at the 99th percentile and the largest, and the largest integrate stage.
   double p99_ms = 0, worst_ms = 0, worst_integrate_ms = 0;
+  // The same frames again with the stages not timed (Pipeline::set_stage_timing off: the
+  // device waited for only where a result is read back): the mean wall time per frame, and
+  // the largest distance between the two runs' poses (0: the same scan).
+  double untimed_wall_ms = 0, untimed_pose_diff_m = 0;
 };
 
 // Runs every device x case; `progress` is told each finished row.

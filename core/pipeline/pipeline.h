@@ -71,7 +71,7 @@ struct FrameReport {
   double exposure_ratio = 1;             // estimated t (model radiance / live radiance)
   std::optional<double> exposure_ratio_reported;  // e_0 / e_k from the sensor's exposures
   long exposure_samples = 0;
-  StageTimes ms;
+  StageTimes ms;  // zero where the pipeline does not time its stages (Pipeline::set_stage_timing)
   std::size_t allocated_bricks = 0;
   // Set on the one frame at which the volume became full: why (its memory budget, or the
   // memory the system or GPU had free). From then on surfaces not yet in the model are not
@@ -124,6 +124,13 @@ class Pipeline {
   ~Pipeline();
 
   FrameReport Process(const FrameInput& frame);
+  // Whether Process() times its stages (FrameReport::ms; on by default): it then waits for
+  // the device at the end of each stage. Off, the device is waited for only where the frame
+  // reads a result back (the tracker's run, the exposure estimate, the new bricks), so the
+  // frame's last ray cast runs beside the next frame's upload; the results are the same.
+  void set_stage_timing(bool on) { stage_timing_ = on; }
+  // Waits until the device has done all the work queued so far (a no-op on the CPU).
+  void Synchronize() { backend_->Synchronize(); }
 
   const PipelineOptions& options() const { return o_; }
   Device device() const { return device_; }  // where the engine actually runs
@@ -170,6 +177,7 @@ class Pipeline {
   Device device_ = Device::kCpu;
   std::string device_note_, settings_note_;
   bool reference_from_model_ = true;       // else the previous tracked frame
+  bool stage_timing_ = true;
   Pose pose_ = Pose::Identity();
   Pose previous_pose_ = Pose::Identity();  // for the constant-velocity prediction
   std::optional<double> pose_time_;         // the timestamp of pose_ (none after a resume)

@@ -138,6 +138,24 @@ TEST(ScanSession, RunsAreReproducible) {
   }
 }
 
+// Without stage timing the scan is the same (only its stage times are left out, zero).
+TEST(ScanSession, StagesNotTimedGiveTheSameScan) {
+  const auto frames = Inputs(8);
+  PipelineOptions o;
+  o.volume.voxel_m = 0.047f;
+  ScanSession a(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  ScanSession b(o, sim::SimCamera(320, 240), sim::BuiltinXtionProfile());
+  b.pipeline().set_stage_timing(false);
+  for (const auto& f : frames) a.Process(f), b.Process(f);
+  EXPECT_GT(a.total_ms().total(), 0);
+  EXPECT_EQ(b.total_ms().total(), 0);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(a.poses()[std::size_t(i)].matrix(), b.poses()[std::size_t(i)].matrix()) << "frame " << i;
+    EXPECT_EQ(a.reports()[std::size_t(i)].exposure_ratio, b.reports()[std::size_t(i)].exposure_ratio);
+    EXPECT_EQ(a.reports()[std::size_t(i)].allocated_bricks, b.reports()[std::size_t(i)].allocated_bricks);
+  }
+}
+
 // A resume point whose ray cast guide does not fit the camera is refused, saying so.
 TEST(Pipeline, AResumeGuideOfAnotherSizeIsRefused) {
   PipelineOptions o;
