@@ -11,7 +11,10 @@
 
 namespace hdrf::par {
 
-struct Gpu {};
+// Kernels go to `stream` (the default stream unless a caller names another).
+struct Gpu {
+  cudaStream_t stream = nullptr;
+};
 
 namespace detail {
 template <typename F>
@@ -27,17 +30,17 @@ __global__ void PixelKernel(int w, int h, F f) {
 }  // namespace detail
 
 template <typename F>
-void ForEach(Gpu, int n, F f) {
+void ForEach(Gpu g, int n, F f) {
   if (n <= 0) return;
-  detail::IndexKernel<<<(n + 255) / 256, 256>>>(n, f);
+  detail::IndexKernel<<<(n + 255) / 256, 256, 0, g.stream>>>(n, f);
   HDRF_CUDA_CHECK_LAUNCH();
 }
 
 template <typename F>
-void ForEachPixel(Gpu, int w, int h, F f) {
+void ForEachPixel(Gpu g, int w, int h, F f) {
   if (w <= 0 || h <= 0) return;
   const dim3 block(32, 8), grid((w + 31) / 32, (h + 7) / 8);
-  detail::PixelKernel<<<grid, block>>>(w, h, f);
+  detail::PixelKernel<<<grid, block, 0, g.stream>>>(w, h, f);
   HDRF_CUDA_CHECK_LAUNCH();
 }
 

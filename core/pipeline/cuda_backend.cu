@@ -158,11 +158,13 @@ class CudaBackend final : public Backend {
   }
 
   exposure::ExposureEstimate EstimateExposure(const Pose& T) override {
+    WaitRaycast();
     return exposure_.Estimate({render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_,
                                ToRigidTransform(T.inverse())});
   }
 
   void Integrate(const Pose& T, float ratio) override {
+    WaitRaycast();  // (the model changes under it)
     volume::IntegrateArgs a = volume::Volume::MakeIntegrateArgs(o_.volume, cam_, T, ratio);
     a.depth = depth_.view();
     a.normals = live_[0]->normal.view();
@@ -183,6 +185,7 @@ class CudaBackend final : public Backend {
   }
 
   void Raycast(const Pose& T, RaycastStart start) override {
+    WaitRaycast();  // (its guide and rendering are rewritten)
     if (start == RaycastStart::kDepth) {
       if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
       volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_.view());
@@ -193,7 +196,13 @@ class CudaBackend final : public Backend {
     volume::RaycastArgs a{cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m};
     if (guided_) a.start = guide_.view();
     a.SetBox(volume_.Bounds());
-    volume_.Raycast(a, render_.views());
+    // On the ray cast's own stream, after everything queued so far (the model as fused, the
+    // guide); the next frame's upload and first stages run beside it.
+    HDRF_CUDA_CHECK(cudaEventRecord(side_.ready, 0));
+    HDRF_CUDA_CHECK(cudaStreamWaitEvent(side_.stream, side_.ready, 0));
+    volume_.Raycast(a, render_.views(), side_.stream);
+    HDRF_CUDA_CHECK(cudaEventRecord(side_.done, side_.stream));
+    raycast_pending_ = true;
     render_pose_ = T;
     has_render_ = true;
     render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
@@ -201,11 +210,13 @@ class CudaBackend final : public Backend {
   bool HasRender() const override { return has_render_; }
   Image<float> RaycastGuide() override { return guided_ ? guide_.ToHost() : Image<float>(); }
   void SetRaycastGuide(const Image<float>& guide) override {
+    WaitRaycast();
     guided_ = !guide.empty();
     if (guided_) guide_ = DeviceImage<float>(guide);
   }
 
   void ReferenceFromRender(const Float3& clip) override {
+    WaitRaycast();
     valid_from_run_ = false;
     CopyD2D(ref_[0]->vertex, render_.vertex);
     CopyD2D(ref_[0]->normal, render_.normal);
@@ -236,6 +247,7 @@ class CudaBackend final : public Backend {
   }
   const volume::Volume& DownloadVolume() override { return volume_.Download(); }
   void LoadVolume(const volume::Volume& model) override {
+    WaitRaycast();
     volume_.Upload(model);
     has_render_ = false;
     has_reference_ = false;
@@ -251,6 +263,7 @@ class CudaBackend final : public Backend {
   }
 
   FrameViews DownloadViews(const ViewSet& which) override {
+    WaitRaycast();
     FrameViews v;
     if (which.radiance) v.radiance = radiance_.ToHost();
     if (which.confidence) v.confidence = conf_.ToHost(), v.max_confidence = maxconf_.ToHost();
@@ -264,6 +277,7 @@ class CudaBackend final : public Backend {
   }
   volume::BrickSet ChangedBricks() override { return volume_.CopyChanged(); }
   FrameImages DownloadStages() override {
+    WaitRaycast();
     if (!render_nr_ready_) NormalizeRender(kNoClip);
     FrameImages f;
     f.radiance = radiance_.ToHost();
@@ -288,6 +302,12 @@ class CudaBackend final : public Backend {
   }
 
  private:
+  // The default stream's next work waits (on the GPU, not the host) for the last ray cast.
+  void WaitRaycast() {
+    if (!raycast_pending_) return;
+    HDRF_CUDA_CHECK(cudaStreamWaitEvent(0, side_.done, 0));
+    raycast_pending_ = false;
+  }
   // A model without NR: the NR of a ray cast's radiance, with the radiance at or above `clip`
   // left out (infinite: none).
   void NormalizeRadiance(const DeviceImage<Float3>& radiance, const Float3& clip, DeviceImage<float>& out) {
@@ -357,6 +377,28 @@ class CudaBackend final : public Backend {
   tracking::GpuNormalEquations sums_;
   exposure::GpuExposureEstimator exposure_;
   volume::DeviceVolume volume_;
+  // The ray cast's stream (not synchronised with the default one: the frame's ray cast runs
+  // beside the next frame's first stages), the point it starts after, the point it ends.
+  // Whatever reads the rendering or changes the model waits for it first (WaitRaycast).
+  struct SideStream {
+    cudaStream_t stream = nullptr;
+    cudaEvent_t ready = nullptr, done = nullptr;
+    SideStream() {
+      HDRF_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
+      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&done, cudaEventDisableTiming));
+    }
+    ~SideStream() {
+      cudaStreamSynchronize(stream);
+      cudaEventDestroy(done);
+      cudaEventDestroy(ready);
+      cudaStreamDestroy(stream);
+    }
+    SideStream(const SideStream&) = delete;
+    SideStream& operator=(const SideStream&) = delete;
+  };
+  SideStream side_;  // (last: gone before the buffers it may still write)
+  bool raycast_pending_ = false;
 };
 
 }  // namespace

@@ -3,6 +3,8 @@
 // per-voxel functions of volume_impl.h (volume_cuda.cu). Built only with CUDA.
 #pragma once
 
+#include <cuda_runtime_api.h>
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -35,8 +37,8 @@ class DeviceVolume {
   // the new ones slots in key order (as Volume::Integrate does) up to the memory limit, then
   // updates each voxel of the visible bricks.
   void Integrate(const IntegrateArgs& a, const Pose& T_world_camera);
-  // Ray casts into device images (the shared driver, raycast_driver.h).
-  void Raycast(const RaycastArgs& a, const RenderingViews& out) const;
+  // Ray casts into device images (the shared driver, raycast_driver.h), on `stream`.
+  void Raycast(const RaycastArgs& a, const RenderingViews& out, cudaStream_t stream = nullptr) const;
 
   const VolumeOptions& options() const { return mirror_.options(); }
   // Bricks in the model: on the GPU and, with a GPU budget, moved to host memory.

@@ -363,8 +363,8 @@ void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const Image
   RaycastGuide(par::Gpu{}, depth, margin_m, tiles);
 }
 
-void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out) const {
-  VisitEncoding(options().encoding, [&](auto tag) { RaycastInto(par::Gpu{}, view<decltype(tag)>(), a, out); });
+void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out, cudaStream_t stream) const {
+  VisitEncoding(options().encoding, [&](auto tag) { RaycastInto(par::Gpu{stream}, view<decltype(tag)>(), a, out); });
 }
 
 const Volume& DeviceVolume::Download() {
