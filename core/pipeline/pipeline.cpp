@@ -523,8 +523,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       if (UsesPhoto(o_.tracker.kind)) Push(photo_residuals_, rep.tracking.rms_photo);
     }
     if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
-    if (o_.reloc.enabled && WantsKeyframe(pose_)) {
-      SettleKeyframe();
+    if (o_.reloc.enabled && WantsKeyframe(pose_)) {  // (the entry being made, if any, is in now)
       if (code.empty() && device_ == Device::kCuda) {
         // The GPU runs the frame; the CPU's cores are free: the entry is made beside the
         // next frames (the same entry, added before any other and before it is looked up).
