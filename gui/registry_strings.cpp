@@ -244,6 +244,8 @@ static const char* const kEngineWords[] = {
     QT_TRANSLATE_NOOP("Engine", "the exposure the pose implies is %1x the sensor's reported exposure (relative to the scan so far)"),
     QT_TRANSLATE_NOOP("Engine", "waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed"),
     QT_TRANSLATE_NOOP("Engine", "confirming the pose after a loss (%1 of %2 frames)"),
+    QT_TRANSLATE_NOOP("Engine", "tracker.levels %1 lowered to %2 for %3x%4 frames (a pyramid level under %5x%6 pixels misleads the tracker)"),
+    QT_TRANSLATE_NOOP("Engine", "CUDA requested but not usable (%1); running on the CPU"),
     QT_TRANSLATE_NOOP("Engine", "%1 % of the image is saturated even at the shortest exposure (%2 ms): the brightest parts add nothing to the top of the curve"),
     QT_TRANSLATE_NOOP("Engine", "the scene spans %1 stops: steps widened to %2 stops to stay within %3 exposures"),
     QT_TRANSLATE_NOOP("Engine", "the planned sweep covers %1 % of the levels of channel %2 (widest gap: levels %3 to %4): the curve is interpolated there"),

@@ -298,8 +298,8 @@ void ScanWorker::Configure(const ScanSettings& s) {
     QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
     if (live_) msg = tr("Live preview: %1 (Start scans)").arg(QString::fromStdString(source_->description()));
     const pipeline::Pipeline& pipe = session_->pipeline();
-    if (!pipe.device_note().empty()) msg += " — " + QString::fromStdString(pipe.device_note());
-    if (!pipe.settings_note().empty()) msg += " — " + QString::fromStdString(pipe.settings_note());
+    if (!pipe.device_note().empty()) msg += " — " + wizard::EngineText(pipe.device_note());
+    if (!pipe.settings_note().empty()) msg += " — " + wizard::EngineText(pipe.settings_note());
     for (const std::string& w : source_->sensor().warnings) msg += " — " + wizard::EngineText(w);
     emit stateChanged(false, msg);
     if (live_) {

@@ -215,6 +215,14 @@
         <source>recovering, and only %1 % of the matched pixels have usable colour (the rest clipped or dark): too little to confirm the pose</source>
         <translation>in der Wiederherstellung, und nur %1 % der zugeordneten Pixel haben brauchbare Farbe (der Rest übersteuert oder dunkel): zu wenig, um die Pose zu bestätigen</translation>
     </message>
+    <message>
+        <source>tracker.levels %1 lowered to %2 for %3x%4 frames (a pyramid level under %5x%6 pixels misleads the tracker)</source>
+        <translation>tracker.levels von %1 auf %2 gesenkt für Bilder von %3x%4 (eine Pyramidenstufe unter %5x%6 Pixeln führt den Tracker in die Irre)</translation>
+    </message>
+    <message>
+        <source>CUDA requested but not usable (%1); running on the CPU</source>
+        <translation>CUDA verlangt, aber nicht nutzbar (%1); läuft auf der CPU</translation>
+    </message>
 </context>
 <context>
     <name>QObject</name>

@@ -39,6 +39,10 @@ struct Wording {
                         "scan so far)")                                                                              \
   X(kWaitingForAnchor, "waiting for a frame to anchor the model: %1 % of its pixels have depth, %2 % needed")        \
   X(kConfirmingPose, "confirming the pose after a loss (%1 of %2 frames)")                                           \
+  /* Settings the engine had to change, once at the start of a scan. */                                              \
+  X(kLevelsLowered, "tracker.levels %1 lowered to %2 for %3x%4 frames (a pyramid level under %5x%6 pixels misleads " \
+                    "the tracker)")                                                                                  \
+  X(kCudaNotUsable, "CUDA requested but not usable (%1); running on the CPU")                                        \
   /* Sweep planning and capture (the calibration wizard, capture-sweep). */                                          \
   X(kPlanSaturated, "%1 % of the image is saturated even at the shortest exposure (%2 ms): the brightest parts add " \
                     "nothing to the top of the curve")                                                               \

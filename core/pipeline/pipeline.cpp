@@ -43,10 +43,10 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
     : o_((options.Check(), options)), cam_(camera), reloc_(options.reloc) {
   if (!camera.Valid()) throw SettingError("camera", "intrinsics must be positive");
   if (const int usable = tracking::UsableLevels(o_.tracker.levels, camera.width, camera.height); usable < o_.tracker.levels) {
-    settings_note_ = "tracker.levels " + std::to_string(o_.tracker.levels) + " lowered to " + std::to_string(usable) +
-                     " for " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                     " frames (a pyramid level under " + std::to_string(tracking::kMinCoarsestWidth) + "x" +
-                     std::to_string(tracking::kMinCoarsestHeight) + " pixels misleads the tracker)";
+    settings_note_ = Say(words::kLevelsLowered,
+                         {std::to_string(o_.tracker.levels), std::to_string(usable), std::to_string(camera.width),
+                          std::to_string(camera.height), std::to_string(tracking::kMinCoarsestWidth),
+                          std::to_string(tracking::kMinCoarsestHeight)});
     o_.tracker.levels = usable;
   }
   if (!sensor.response)
@@ -72,7 +72,7 @@ Pipeline::Pipeline(const PipelineOptions& options, const PinholeCamera& camera,
       backend_ = MakeCudaBackend(setup);
       device_ = Device::kCuda;
     } else {
-      device_note_ = "CUDA requested but not usable (" + why + "); running on the CPU";
+      device_note_ = Say(words::kCudaNotUsable, {why});
     }
   }
   if (!backend_) backend_ = MakeCpuBackend(setup);

@@ -173,6 +173,10 @@ TEST(Translations, EngineMessagesAreShownInGerman) {
             QStringLiteral("Punkt-zu-Fläche-Fehler 3,1 cm, 2,5-mal so groß wie die für diesen Scan üblichen 0,75 cm"));
   EXPECT_EQ(wizard::EngineText(Say(words::kConfirmingPose, {"1", "3"})),
             QStringLiteral("bestätige die Pose nach einem Verlust (1 von 3 Bildern)"));
+  // The note the studio's status line gives where small frames lowered the pyramid levels.
+  EXPECT_EQ(wizard::EngineText(Say(words::kLevelsLowered, {"3", "2", "160", "120", "80", "60"})),
+            QStringLiteral("tracker.levels von 3 auf 2 gesenkt für Bilder von 160x120 (eine Pyramidenstufe unter "
+                           "80x60 Pixeln führt den Tracker in die Irre)"));
   // A failed capture step: the failure and the advice are messages themselves; the folder
   // (holding "%2" and ": ") is kept as it is.
   const std::string failure = Say(words::kFlicker, {"12"});
