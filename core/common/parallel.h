@@ -40,4 +40,11 @@ void ForEachPixel(Host, int w, int h, F f) {
     for (int x = 0; x < w; ++x) f(x, y);
 }
 
+// The same, where neighbouring pixels' work is alike (ray casting): the GPU runs it in
+// square tiles, so that a warp's pixels are neighbours in both directions.
+template <typename F>
+void ForEachPixelInTiles(Host h, int w, int hgt, F f) {
+  ForEachPixel(h, w, hgt, f);
+}
+
 }  // namespace hdrf::par

@@ -102,6 +102,10 @@ class Backend {
   virtual long ReferenceValid() = 0;
   // 4. Reads the radiance and the last ray cast. The exposure ratio of the live frame.
   virtual exposure::ExposureEstimate EstimateExposure(const Pose& T_world_live) = 0;
+  // Says that the next RunTracker is likely followed by EstimateExposure at the pose it finds:
+  // a backend may make the estimate with the run (the CUDA backend queues it behind the run on
+  // the device and reads both back at once). The same estimate either way.
+  virtual void EstimateExposureWithNextRun() {}
   // 5. Reads the radiance, confidence, NR, filtered depth and finest live normals. Fuses
   // them at a pose into the model, the radiance scaled by `ratio`.
   virtual void Integrate(const Pose& T_world_camera, float ratio) = 0;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "common/cuda_check.h"
@@ -100,6 +101,7 @@ class CudaBackend final : public Backend {
   }
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
+    exposure_ready_ = false;
     // Through pinned staging memory, piece by piece (the CPU's threads copy the frame there
     // while the GPU fetches the pieces already copied at full bus speed): a copy from
     // ordinary memory went through the driver's own staging a piece at a time.
@@ -117,6 +119,7 @@ class CudaBackend final : public Backend {
   }
 
   void Normalize() override {
+    exposure_ready_ = false;
     LiveLevelD& L0 = *live_[0];
     nr::TrackingLuminanceOnGpu(color_.view(), radiance_.view(), conf_.view(), lum_.view(), conf_track_.view());
     nr::NormalizeOnGpu(lum_.view(), nr_scratch_.views(), o_.nr, nr_.view());
@@ -145,10 +148,21 @@ class CudaBackend final : public Backend {
                                       const tracking::MotionPrior* prior) override {
     std::vector<tracking::GpuNormalEquations::Level> levels;
     for (std::size_t l = 0; l < live_.size(); ++l) levels.push_back({ref_[l]->view(), live_[l]->view()});
-    tracking::GaussNewtonRun run = sums_.RunOnDevice(levels, reference_pose_, initial, t, prior);
+    const bool with_exposure = std::exchange(exposure_next_, false) && has_render_;
+    exposure_ready_ = false;
+    if (with_exposure) WaitRaycast();  // (before the run's start: it waits for the default stream)
+    sums_.QueueRun(levels, reference_pose_, initial, t, prior);
+    if (with_exposure) exposure_.Queue(ExposureViews(), sums_.device_pose(), sums_.stream());
+    tracking::GaussNewtonRun run = sums_.FinishRun();
     valid_from_run_ = true;
+    if (with_exposure) {
+      exposure_estimate_ = exposure_.Result();
+      exposure_pose_ = run.T_world_camera;
+      exposure_ready_ = true;
+    }
     return run;
   }
+  void EstimateExposureWithNextRun() override { exposure_next_ = true; }
   // Counted inside the last tracker run where neither side has changed since.
   long LiveValid() override {
     return valid_from_run_ ? sums_.last_valid().live : sums_.CountLiveVertices(live_[0]->vertex.view());
@@ -158,9 +172,10 @@ class CudaBackend final : public Backend {
   }
 
   exposure::ExposureEstimate EstimateExposure(const Pose& T) override {
+    // Made with the tracker's run at this very pose, on the same inputs: that one.
+    if (exposure_ready_ && T.matrix() == exposure_pose_.matrix()) return exposure_estimate_;
     WaitRaycast();
-    return exposure_.Estimate({render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_,
-                               ToRigidTransform(T.inverse())});
+    return exposure_.Estimate(ExposureViews(), T);
   }
 
   void Integrate(const Pose& T, float ratio) override {
@@ -185,6 +200,7 @@ class CudaBackend final : public Backend {
   }
 
   void Raycast(const Pose& T, RaycastStart start) override {
+    exposure_ready_ = false;
     WaitRaycast();  // (its guide and rendering are rewritten)
     if (start == RaycastStart::kDepth) {
       if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
@@ -247,6 +263,7 @@ class CudaBackend final : public Backend {
   }
   const volume::Volume& DownloadVolume() override { return volume_.Download(); }
   void LoadVolume(const volume::Volume& model) override {
+    exposure_ready_ = false;
     WaitRaycast();
     volume_.Upload(model);
     has_render_ = false;
@@ -302,6 +319,11 @@ class CudaBackend final : public Backend {
   }
 
  private:
+  // The exposure estimate's inputs: the last ray cast and the live frame (its transform comes
+  // from the pose the estimate is made at).
+  exposure::ExposureArgs ExposureViews() const {
+    return {render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_, {}};
+  }
   // The default stream's next work waits (on the GPU, not the host) for the last ray cast.
   void WaitRaycast() {
     if (!raycast_pending_) return;
@@ -376,6 +398,11 @@ class CudaBackend final : public Backend {
   bool valid_from_run_ = false;  // LiveValid / ReferenceValid: the last tracker run's counts hold
   tracking::GpuNormalEquations sums_;
   exposure::GpuExposureEstimator exposure_;
+  // EstimateExposureWithNextRun: the next run makes the estimate too; the one it made, at
+  // exposure_pose_, while exposure_ready_ (until the inputs change: a frame, a ray cast).
+  bool exposure_next_ = false, exposure_ready_ = false;
+  exposure::ExposureEstimate exposure_estimate_;
+  Pose exposure_pose_ = Pose::Identity();
   volume::DeviceVolume volume_;
   // The ray cast's stream (not synchronised with the default one: the frame's ray cast runs
   // beside the next frame's first stages), the point it starts after, the point it ends.

@@ -385,8 +385,10 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     // yet), matching all of that part is a success, not a loss.
     const tracking::TrackerOptions topt = TrackerNow();
     auto track = [&](const Pose& from, const tracking::MotionPrior* prior = nullptr) {
-      return tracking::JudgeTrack(b.RunTracker(from, topt, prior), from, std::min(b.LiveValid(), b.ReferenceValid()),
-                                  topt, prior);
+      // The run first: its counts of valid pixels are the ones LiveValid / ReferenceValid
+      // give (the order a call's arguments are evaluated in is the compiler's choice).
+      const tracking::GaussNewtonRun run = b.RunTracker(from, topt, prior);
+      return tracking::JudgeTrack(run, from, std::min(b.LiveValid(), b.ReferenceValid()), topt, prior);
     };
     const Pose velocity = previous_pose_.inverse() * pose_;
     tracking::TrackResult r;
@@ -396,6 +398,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       const double steps = Steps(in);
       const Pose predicted = se3::Orthonormalized(pose_ * se3::Exp(steps * se3::Log(velocity)));
       const tracking::MotionPrior prior{predicted, steps};
+      if (b.HasRender()) b.EstimateExposureWithNextRun();  // (Verify estimates it at the pose found)
       r = track(predicted, &prior);
       verdict = Verify(r, in, recovering_);
     } else {

@@ -212,6 +212,15 @@ GnSystem GpuNormalEquations::Accumulate(const ReferenceView& ref, const Pose& T_
 
 GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref,
                                                const Pose& initial, const TrackerOptions& o, const MotionPrior* prior) {
+  QueueRun(levels, T_world_ref, initial, o, prior);
+  return FinishRun();
+}
+
+cudaStream_t GpuNormalEquations::stream() const { return impl_->stream; }
+const PoseD* GpuNormalEquations::device_pose() const { return &impl_->track.data()->run.T; }
+
+void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
+                                  const TrackerOptions& o, const MotionPrior* prior) {
   Impl& m = *impl_;
   GraphShape g;
   g.levels = std::min(o.levels, std::min(int(levels.size()), 4));
@@ -238,6 +247,10 @@ GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels,
   HDRF_CUDA_CHECK(cudaEventRecord(m.ready, 0));
   HDRF_CUDA_CHECK(cudaStreamWaitEvent(m.stream, m.ready, 0));
   HDRF_CUDA_CHECK(cudaGraphLaunch(m.graph, m.stream));
+}
+
+GaussNewtonRun GpuNormalEquations::FinishRun() {
+  Impl& m = *impl_;
   HDRF_CUDA_CHECK(cudaStreamSynchronize(m.stream));
   const DeviceRun& r = m.host->run;
   GaussNewtonRun run;

@@ -4,6 +4,8 @@
 // themselves on the device. Views are device views.
 #pragma once
 
+#include <cuda_runtime_api.h>
+
 #include <memory>
 #include <vector>
 
@@ -34,6 +36,14 @@ class GpuNormalEquations {
   };
   GaussNewtonRun RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
                              const TrackerOptions& o, const MotionPrior* prior);
+  // RunOnDevice in two halves: the run queued (after the default stream's work) on the
+  // tracker's stream, where more may be queued behind it (at the pose it leaves in device
+  // memory); then waited for and read back.
+  void QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
+                const TrackerOptions& o, const MotionPrior* prior);
+  GaussNewtonRun FinishRun();
+  cudaStream_t stream() const;
+  const PoseD* device_pose() const;  // the run's pose, in device memory
   long CountLiveVertices(ImageView<const Float3> vertex_c);       // with depth (z > 0)
   long CountReferenceVertices(ImageView<const Float3> vertex_w);  // any non-zero vertex
   // Both counts of the finest level of the last RunOnDevice, made inside its run.

@@ -44,7 +44,7 @@ void RaycastInto(Device d, const VolumeView<V>& volume, const RaycastArgs& a, co
   const VolumeView<V> vv = volume;
   const RaycastArgs args = a;
   const RenderingViews r = out;
-  par::ForEachPixel(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
+  par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
     const RayHit hit = RaycastPixel(vv, args, x, y);
     r.vertex(x, y) = hit.vertex;
     r.normal(x, y) = hit.normal;

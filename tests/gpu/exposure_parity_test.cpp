@@ -1,5 +1,7 @@
-// The exposure estimate on the GPU (a digit-by-digit select of the weighted median) against
-// the CPU's (sorted) on identical inputs. Skips (with the reason) where no GPU is usable.
+// The exposure estimate on the GPU (CUB's radix sort and scan) against the CPU's (sorted) on
+// identical inputs, at poses away from the origin; and the estimate queued behind a run, at a
+// pose in device memory, against the one made at that pose. Skips (with the reason) where no
+// GPU is usable.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,9 @@
 #include <string>
 
 #include "common/cuda_runtime.h"
+#include "common/se3.h"
 #include "exposure/exposure.h"
+#include "tracking/tracking.h"
 #if HDRF_HAS_CUDA
 #include "common/device_buffer.h"
 #include "exposure/exposure_gpu.h"
@@ -23,17 +27,18 @@ struct Scene {
   Image<float> confidence{cam.width, cam.height};
 };
 
-// A wall 2 m away seen from the identity pose; the live radiance is the model's over the
-// ratio t, times a factor of `levels` values (few levels: many samples share a ratio);
-// a share of the pixels have no model surface or no live confidence.
-Scene MakeScene(unsigned seed, double t, int levels, double invalid) {
+// A wall 2 m away seen from `T` (the model's vertices in the world); the live radiance is
+// the model's over the ratio t, times a factor of `levels` values (few levels: many samples
+// share a ratio); a share of the pixels have no model surface or no live confidence.
+Scene MakeScene(unsigned seed, double t, int levels, double invalid, const Pose& T = Pose::Identity()) {
   Scene s;
+  const RigidTransform Tf = ToRigidTransform(T);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.f, 1.f);
   std::uniform_int_distribution<int> level(0, levels - 1);
   for (int y = 0; y < s.cam.height; ++y)
     for (int x = 0; x < s.cam.width; ++x) {
-      s.vertex(x, y) = u(rng) < invalid ? Float3{0, 0, 0} : s.cam.BackProject(float(x), float(y), 2.f);
+      s.vertex(x, y) = u(rng) < invalid ? Float3{0, 0, 0} : Tf.Apply(s.cam.BackProject(float(x), float(y), 2.f));
       const Float3 m{0.05f + u(rng), 0.05f + u(rng), 0.05f + u(rng)};
       s.model(x, y) = m;
       const float f = float(std::exp(0.4 * (double(level(rng)) / std::max(1, levels - 1) - 0.5)) / t);
@@ -56,15 +61,19 @@ TEST(GpuExposureParity, WeightedMedianMatchesTheCpu) {
   };
   for (const Case& c : {Case{1, 1.7, 100000, 0.1, 2}, Case{2, 0.4, 5, 0.3, 2}, Case{3, 1.0, 2, 0.0, 1},
                         Case{4, 3.0, 1, 0.5, 3}, Case{5, 1.2, 100000, 1.0, 2}}) {
-    const Scene s = MakeScene(c.seed, c.t, c.levels, c.invalid);
+    // Odd seeds away from the origin (turned and moved: the transform the samples use is
+    // made from the pose on each device).
+    Vec6 xi;
+    xi << 0.7, -1.3, 2.1, 0.3, -0.45, 0.8;
+    const Pose T = c.seed % 2 ? se3::Exp(xi * (0.5 + 0.1 * c.seed)) : Pose::Identity();
+    const Scene s = MakeScene(c.seed, c.t, c.levels, c.invalid, T);
     ExposureOptions o;
     o.stride = c.stride;
-    const ExposureEstimate cpu =
-        EstimateExposureRatio(s.vertex, s.model, s.live, s.confidence, s.cam, Pose::Identity(), o);
+    const ExposureEstimate cpu = EstimateExposureRatio(s.vertex, s.model, s.live, s.confidence, s.cam, T, o);
     const DeviceImage<Float3> v(s.vertex), m(s.model), l(s.live);
     const DeviceImage<float> w(s.confidence);
     GpuExposureEstimator est(s.cam.width, s.cam.height, o);
-    const ExposureEstimate gpu = est.Estimate({v.view(), m.view(), l.view(), w.view(), s.cam, ToRigidTransform(Pose::Identity())});
+    const ExposureEstimate gpu = est.Estimate({v.view(), m.view(), l.view(), w.view(), s.cam, {}}, T);
     std::printf("seed %u (t %.2f, %d levels, %.0f%% invalid, stride %d): CPU %ld samples ratio %.9g, GPU %ld "
                 "samples ratio %.9g\n",
                 c.seed, c.t, c.levels, 100 * c.invalid, c.stride, cpu.samples, cpu.ratio, gpu.samples, gpu.ratio);
@@ -75,6 +84,41 @@ TEST(GpuExposureParity, WeightedMedianMatchesTheCpu) {
       EXPECT_TRUE(cpu.valid);
       EXPECT_NEAR(cpu.ratio, c.t, 0.25 * c.t) << "seed " << c.seed;  // the scene's ratio, within its spread
     }
+  }
+#endif
+}
+
+// Queued behind other work at a pose in device memory (as behind the tracker's run), the
+// estimate is the one made at that pose: the same count and the same ratio, bit for bit.
+TEST(GpuExposureParity, QueuedAtADevicePoseIsTheEstimateAtThatPose) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+#if HDRF_HAS_CUDA
+  Vec6 xi;
+  xi << -0.4, 0.9, 1.6, -0.2, 0.35, -0.6;
+  for (const double k : {0.0, 0.3, 1.0}) {
+    const Pose T = se3::Exp(k * xi);
+    const Scene s = MakeScene(7, 1.45, 100000, 0.2, T);
+    const ExposureOptions o;
+    const DeviceImage<Float3> v(s.vertex), m(s.model), l(s.live);
+    const DeviceImage<float> w(s.confidence);
+    const ExposureArgs a{v.view(), m.view(), l.view(), w.view(), s.cam, {}};
+    GpuExposureEstimator est(s.cam.width, s.cam.height, o);
+    const ExposureEstimate direct = est.Estimate(a, T);
+    DeviceBuffer<tracking::PoseD> pose(1);
+    const tracking::PoseD p = tracking::ToPoseD(T);
+    cuda::CopyHostToDevice(pose.data(), &p, sizeof(p));
+    est.Queue(a, pose.data(), nullptr);
+    cuda::Synchronize();
+    const ExposureEstimate queued = est.Result();
+    std::printf("pose %.1f: made %ld samples ratio %.17g, queued %ld samples ratio %.17g\n", k, direct.samples,
+                direct.ratio, queued.samples, queued.ratio);
+    EXPECT_TRUE(direct.valid);
+    EXPECT_GT(direct.samples, 1000);
+    EXPECT_NEAR(direct.ratio, 1.45, 0.2);
+    EXPECT_EQ(queued.samples, direct.samples);
+    EXPECT_EQ(queued.valid, direct.valid);
+    EXPECT_EQ(queued.ratio, direct.ratio);  // bit for bit
   }
 #endif
 }
