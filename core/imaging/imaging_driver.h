@@ -25,7 +25,8 @@ void RawIntensity(Device d, ImageView<const Rgb8> color, ImageView<float> intens
   });
 }
 
-void BilateralFilterOnGpu(ImageView<const float> depth_m, const BilateralTables& t, ImageView<float> out);
+// `tables` in device memory (the same tables as BilateralFilter's).
+void BilateralFilterOnGpu(ImageView<const float> depth_m, const BilateralTables* tables, ImageView<float> out);
 void RawIntensityOnGpu(ImageView<const Rgb8> color, ImageView<float> intensity, ImageView<float> weight);
 
 }  // namespace hdrf::imaging

@@ -55,13 +55,18 @@ void ClippedLuminanceOf(Device d, ImageView<const Float3> radiance, Float3 clip,
                     HDRF_LAMBDA(int x, int y) { lum(x, y) = ClippedLuminance(radiance(x, y), clip); });
 }
 
-// The row pass of the integral images on the CPU: each row is independent.
+// The row and column passes of the integral images on the CPU: each row, then each column,
+// is independent.
 inline void RowPasses(par::Host d, ImageView<const float> cells, NrIntegrals in) {
   par::ForEach(d, cells.height, [=](int y) { NrRowPass(cells, in, y); });
 }
+inline void ColumnPasses(par::Host d, NrIntegrals in) {
+  par::ForEach(d, in.cnt.width, [=](int x) { NrColumnPass(in, x); });
+}
 
 // NR of `lum` into `out`; the up-sampled local mean and std too where those views are
-// non-empty. The row pass is device-specific (RowPasses, found for the device's tag).
+// non-empty. The passes of the integral images are device-specific (RowPasses, ColumnPasses,
+// found for the device's tag).
 template <typename Device>
 void Normalize(Device d, ImageView<const float> lum, const Scratch& s, const NormalizedRadianceOptions& o,
                ImageView<float> out, ImageView<float> mean_out = {}, ImageView<float> std_out = {}) {
@@ -72,7 +77,7 @@ void Normalize(Device d, ImageView<const float> lum, const Scratch& s, const Nor
   // 1. Cell means, 2. integral images, 3. local statistics on the small grid.
   par::ForEachPixel(d, cells.width, cells.height, HDRF_LAMBDA(int x, int y) { cells(x, y) = NrCellMean(lum, x, y, f); });
   RowPasses(d, ImageView<const float>(cells), in);
-  par::ForEach(d, cells.width + 1, HDRF_LAMBDA(int x) { NrColumnPass(in, x); });
+  ColumnPasses(d, in);
   par::ForEachPixel(d, cells.width, cells.height,
                     HDRF_LAMBDA(int x, int y) { NrLocalStats(in, x, y, r, &ms(x, y), &ss(x, y)); });
   // 4. Up-sampled statistics and the normalized value per pixel.

@@ -84,12 +84,14 @@ class CudaBackend final : public Backend {
  public:
   explicit CudaBackend(const BackendSetup& s)
       : o_(s.options), cam_(s.camera),
-        bilateral_(imaging::MakeBilateralTables(o_.depth.sigma_space_px, o_.depth.sigma_depth_m, o_.depth.radius)),
         color_(cam_.width, cam_.height), depth_raw_(cam_.width, cam_.height), depth_(cam_.width, cam_.height),
         conf_(cam_.width, cam_.height), maxconf_(cam_.width, cam_.height), lum_(cam_.width, cam_.height), conf_track_(cam_.width, cam_.height),
         nr_(cam_.width, cam_.height), lum_render_(cam_.width, cam_.height), radiance_(cam_.width, cam_.height),
         nr_scratch_(cam_.width, cam_.height, o_.nr.downsample), render_(cam_.width, cam_.height),
         exposure_(cam_.width, cam_.height, o_.exposure), volume_(o_.volume) {
+    const imaging::BilateralTables bt =
+        imaging::MakeBilateralTables(o_.depth.sigma_space_px, o_.depth.sigma_depth_m, o_.depth.radius);
+    cuda::CopyHostToDevice(bilateral_.data(), &bt, sizeof(bt));
     inverse_.Upload(s.inverse, 768);
     pcf_.Upload(s.pcf, 768);
     PinholeCamera c = cam_;
@@ -114,7 +116,7 @@ class CudaBackend final : public Backend {
     HDRF_CUDA_CHECK(cudaEventRecord(stage_.sent, 0));
     radiometry::ConvertFrameOnGpu(color_.view(), inverse_.data(), pcf_.data(), radiance_.view(), conf_.view(),
                                   maxconf_.view());
-    if (o_.depth.bilateral) imaging::BilateralFilterOnGpu(depth_raw_.view(), bilateral_, depth_.view());
+    if (o_.depth.bilateral) imaging::BilateralFilterOnGpu(depth_raw_.view(), bilateral_.data(), depth_.view());
     else CopyD2D(depth_, depth_raw_);
   }
 
@@ -379,7 +381,7 @@ class CudaBackend final : public Backend {
   const PipelineOptions o_;
   PinholeCamera cam_;
   Staging stage_{cam_};
-  imaging::BilateralTables bilateral_;
+  DeviceBuffer<imaging::BilateralTables> bilateral_{1};  // (device memory)
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
   DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
