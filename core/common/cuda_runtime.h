@@ -36,11 +36,21 @@ void CopyHostToDevice(void* dst, const void* src, std::size_t bytes);
 void CopyDeviceToHost(void* dst, const void* src, std::size_t bytes);
 // Queues a copy of `bytes` of ordinary host memory `src` to the device's `dst` through
 // `staging` (pinned host memory as large): the CPU's threads copy pieces into the staging
-// memory, and each piece is queued for the GPU (on the default stream) as soon as it is
-// there, so the bus carries the first pieces while the CPU copies the rest. Returns once
-// every piece is queued; the staging memory is in use until the default stream reaches
-// this point.
-void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes);
+// memory, and the calling thread queues each piece for the GPU (on the default stream) as
+// soon as it is there, so the bus carries the first pieces while the CPU copies the rest.
+// Returns once every piece is queued; the staging memory is in use until the default
+// stream reaches this point. Several parts (a frame's colour and depth) go in one pass.
+struct UploadPart {
+  void* dst;
+  void* staging;
+  const void* src;
+  std::size_t bytes;
+};
+void UploadThroughStaging(const UploadPart* parts, int count);
+inline void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes) {
+  const UploadPart part{dst, staging, src, bytes};
+  UploadThroughStaging(&part, 1);
+}
 void Synchronize();
 }  // namespace cuda
 

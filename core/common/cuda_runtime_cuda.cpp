@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "common/cuda_check.h"
 #include "common/cuda_runtime.h"
@@ -91,43 +92,63 @@ void CopyHostToDevice(void* dst, const void* src, std::size_t bytes) {
 void CopyDeviceToHost(void* dst, const void* src, std::size_t bytes) {
   HDRF_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost));
 }
-void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes) {
-  // Pieces of 128 KiB, dealt out to the threads in turn (the first pieces are copied first);
-  // the calling thread queues each piece for the GPU, in order, as soon as it is in the
-  // staging memory (only it calls CUDA: no driver lock contended, the caller's device).
+void UploadThroughStaging(const UploadPart* parts, int count) {
+  // Pieces of 128 KiB of every part, dealt out to the copying threads in turn (the first
+  // pieces are copied first); the calling thread copies none: it queues each piece for the
+  // GPU, in order, as soon as it is in the staging memory (only it calls CUDA: no driver
+  // lock contended, the caller's device). (Copying pieces of its own too, it left those
+  // ready meanwhile unqueued.) With one thread, it copies and queues each piece in turn.
   constexpr std::size_t kPiece = std::size_t(128) << 10;
-  constexpr int kMaxThreads = 8;  // more copy no faster: the memory bus is the limit
-  const long pieces = long((bytes + kPiece - 1) / kPiece);
-  if (pieces == 0) return;
-  auto* d = static_cast<unsigned char*>(dst);
-  auto* st = static_cast<unsigned char*>(staging);
-  const auto* s = static_cast<const unsigned char*>(src);
-  const int threads = int(std::min<long>({pieces, long(omp_get_max_threads()), long(kMaxThreads)}));
-  std::unique_ptr<std::atomic<bool>[]> ready(new std::atomic<bool>[std::size_t(pieces)]);
-  for (long c = 0; c < pieces; ++c) ready[std::size_t(c)].store(false, std::memory_order_relaxed);
-  long queued = 0;
+  constexpr int kMaxCopiers = 8;  // more copy no faster: the memory bus is the limit
+  struct Piece {
+    unsigned char* dst;
+    unsigned char* staging;
+    const unsigned char* src;
+    std::size_t bytes;
+  };
+  std::vector<Piece> pieces;
+  for (int p = 0; p < count; ++p)
+    for (std::size_t at = 0; at < parts[p].bytes; at += kPiece)
+      pieces.push_back({static_cast<unsigned char*>(parts[p].dst) + at, static_cast<unsigned char*>(parts[p].staging) + at,
+                        static_cast<const unsigned char*>(parts[p].src) + at, std::min(kPiece, parts[p].bytes - at)});
+  const long n = long(pieces.size());
+  if (n == 0) return;
+  const int threads = int(std::min<long>({n + 1, long(omp_get_max_threads()), long(kMaxCopiers + 1)}));
   cudaError_t err = cudaSuccess;
-  auto queue_ready = [&](bool wait) {
-    while (queued < pieces) {
-      if (!ready[std::size_t(queued)].load(std::memory_order_acquire)) {
-        if (!wait) return;
-        continue;
-      }
-      const std::size_t at = std::size_t(queued) * kPiece;
-      if (err == cudaSuccess) err = cudaMemcpyAsync(d + at, st + at, std::min(kPiece, bytes - at), cudaMemcpyHostToDevice, 0);
-      ++queued;
+  auto queue = [&](const Piece& c) {
+    if (err == cudaSuccess) err = cudaMemcpyAsync(c.dst, c.staging, c.bytes, cudaMemcpyHostToDevice, 0);
+  };
+  auto alone = [&] {
+    for (const Piece& c : pieces) {
+      std::memcpy(c.staging, c.src, c.bytes);
+      queue(c);
     }
   };
+  if (threads < 2) {
+    alone();
+    HDRF_CUDA_CHECK(err);
+    return;
+  }
+  std::unique_ptr<std::atomic<bool>[]> ready(new std::atomic<bool>[std::size_t(n)]);
+  for (long c = 0; c < n; ++c) ready[std::size_t(c)].store(false, std::memory_order_relaxed);
 #pragma omp parallel num_threads(threads)
   {
-    const int t = omp_get_thread_num(), n = omp_get_num_threads();
-    for (long c = t; c < pieces; c += n) {
-      const std::size_t at = std::size_t(c) * kPiece;
-      std::memcpy(st + at, s + at, std::min(kPiece, bytes - at));
-      ready[std::size_t(c)].store(true, std::memory_order_release);
-      if (t == 0) queue_ready(false);
+    const int t = omp_get_thread_num(), copiers = omp_get_num_threads() - 1;
+    if (copiers == 0) {  // (given fewer threads than asked for: inside another parallel region)
+      alone();
+    } else if (t == 0) {
+      for (long c = 0; c < n; ++c) {
+        while (!ready[std::size_t(c)].load(std::memory_order_acquire)) {
+        }
+        queue(pieces[std::size_t(c)]);
+      }
+    } else {
+      for (long c = t - 1; c < n; c += copiers) {
+        const Piece& p = pieces[std::size_t(c)];
+        std::memcpy(p.staging, p.src, p.bytes);
+        ready[std::size_t(c)].store(true, std::memory_order_release);
+      }
     }
-    if (t == 0) queue_ready(true);
   }
   HDRF_CUDA_CHECK(err);
 }

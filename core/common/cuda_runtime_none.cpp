@@ -18,7 +18,7 @@ void* Malloc(std::size_t) { ThrowNoCudaBackend(); }
 void Free(void* ptr) noexcept { (void)ptr; }
 void CopyHostToDevice(void*, const void*, std::size_t) { ThrowNoCudaBackend(); }
 void CopyDeviceToHost(void*, const void*, std::size_t) { ThrowNoCudaBackend(); }
-void UploadThroughStaging(void*, void*, const void*, std::size_t) { ThrowNoCudaBackend(); }
+void UploadThroughStaging(const UploadPart*, int) { ThrowNoCudaBackend(); }
 void Synchronize() { ThrowNoCudaBackend(); }
 }  // namespace cuda
 }  // namespace hdrf

@@ -138,6 +138,17 @@ class Backend {
   virtual Pose ReferencePose() const = 0;
   // Waits for queued work (timing); a no-op on the CPU.
   virtual void Synchronize() {}
+  // The frame Convert was last given (colour and depth as delivered), read back for another
+  // thread without the calling thread waiting or copying: `wait`, called on that thread,
+  // returns once `color` and `depth` hold it; they stay valid until the next call. Only a
+  // backend whose frame is in device memory offers it (the CUDA backend; others: nothing,
+  // and the caller copies the frame itself).
+  struct FrameReadback {
+    const Rgb8* color = nullptr;
+    const float* depth = nullptr;
+    std::function<void()> wait;
+  };
+  virtual bool ReadBackFrame(FrameReadback*) { return false; }
 
   // Host copies for reports, views, tests and export.
   virtual volume::Volume::Rendering Render(const Pose& T_world_camera) = 0;

@@ -111,8 +111,9 @@ class CudaBackend final : public Backend {
     if (cb > stage_.color_bytes || db > stage_.depth_bytes)
       throw Error("the frame is larger than the camera the GPU pipeline was set up for");
     HDRF_CUDA_CHECK(cudaEventSynchronize(stage_.sent));  // the last frame has left the staging memory
-    cuda::UploadThroughStaging(color_.data(), stage_.color, color.data(), cb);
-    cuda::UploadThroughStaging(depth_raw_.data(), stage_.depth, depth_m.data(), db);
+    const cuda::UploadPart parts[2] = {{color_.data(), stage_.color, color.data(), cb},
+                                       {depth_raw_.data(), stage_.depth, depth_m.data(), db}};
+    cuda::UploadThroughStaging(parts, 2);
     HDRF_CUDA_CHECK(cudaEventRecord(stage_.sent, 0));
     radiometry::ConvertFrameOnGpu(color_.view(), inverse_.data(), pcf_.data(), radiance_.view(), conf_.view(),
                                   maxconf_.view());
@@ -257,6 +258,18 @@ class CudaBackend final : public Backend {
   bool HasReference() const override { return has_reference_; }
   Pose ReferencePose() const override { return reference_pose_; }
   void Synchronize() override { cuda::Synchronize(); }
+  bool ReadBackFrame(FrameReadback* out) override {
+    // Queued on the default stream, before the next frame's upload overwrites the frame.
+    if (!readback_) readback_ = std::make_unique<Readback>(stage_);
+    HDRF_CUDA_CHECK(cudaMemcpyAsync(readback_->color, color_.data(), readback_->color_bytes, cudaMemcpyDeviceToHost, 0));
+    HDRF_CUDA_CHECK(cudaMemcpyAsync(readback_->depth, depth_raw_.data(), readback_->depth_bytes, cudaMemcpyDeviceToHost, 0));
+    HDRF_CUDA_CHECK(cudaEventRecord(readback_->there, 0));
+    const cudaEvent_t there = readback_->there;
+    out->color = static_cast<const Rgb8*>(readback_->color);
+    out->depth = static_cast<const float*>(readback_->depth);
+    out->wait = [there] { HDRF_CUDA_CHECK(cudaEventSynchronize(there)); };
+    return true;
+  }
 
   volume::Volume::Rendering Render(const Pose& T) override {
     RenderD tmp(cam_.width, cam_.height);
@@ -378,9 +391,30 @@ class CudaBackend final : public Backend {
     Staging& operator=(const Staging&) = delete;
   };
 
+  // Pinned host memory a frame is read back into (ReadBackFrame), made at the first.
+  struct Readback {
+    void* color = nullptr;
+    void* depth = nullptr;
+    std::size_t color_bytes = 0, depth_bytes = 0;
+    cudaEvent_t there = nullptr;
+    explicit Readback(const Staging& s) : color_bytes(s.color_bytes), depth_bytes(s.depth_bytes) {
+      HDRF_CUDA_CHECK(cudaMallocHost(&color, color_bytes));
+      HDRF_CUDA_CHECK(cudaMallocHost(&depth, depth_bytes));
+      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&there, cudaEventDisableTiming));
+    }
+    ~Readback() {
+      cudaEventDestroy(there);
+      cudaFreeHost(depth);
+      cudaFreeHost(color);
+    }
+    Readback(const Readback&) = delete;
+    Readback& operator=(const Readback&) = delete;
+  };
+
   const PipelineOptions o_;
   PinholeCamera cam_;
   Staging stage_{cam_};
+  std::unique_ptr<Readback> readback_;
   DeviceBuffer<imaging::BilateralTables> bilateral_{1};  // (device memory)
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;

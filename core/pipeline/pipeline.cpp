@@ -527,13 +527,22 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     }
     if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
     if (o_.reloc.enabled && WantsKeyframe(pose_)) {  // (the entry being made, if any, is in now)
-      if (code.empty() && device_ == Device::kCuda) {
+      Backend::FrameReadback frame;
+      if (code.empty() && device_ == Device::kCuda && b.ReadBackFrame(&frame)) {
         // The GPU runs the frame; the CPU's cores are free: the entry is made beside the
-        // next frames (the same entry, added before any other and before it is looked up).
+        // next frames (the same entry, added before any other and before it is looked up),
+        // from the frame read back from the GPU (this thread neither waits nor copies: a
+        // copy of a 640x480 frame here took longer than the GPU's whole frame). The read-back
+        // memory is reused at the next entry, made only once this one is settled.
         keyframe_pose_ = pose_;
-        keyframe_ = std::async(std::launch::async, [frame = rep.index, T = pose_, color = in.color.Clone(),
-                                                    depth = in.depth_m.Clone(), inverse = &inverse_] {
-                      return RelocEntry(frame, T, MakeRelocCode(color, depth, *inverse), Thumbnail(color));
+        keyframe_ = std::async(std::launch::async, [index = rep.index, T = pose_, frame, w = cam_.width,
+                                                    h = cam_.height, inverse = &inverse_] {
+                      frame.wait();
+                      ColorImage color(w, h);
+                      DepthImage depth(w, h);
+                      std::copy_n(frame.color, color.size(), color.data());
+                      std::copy_n(frame.depth, depth.size(), depth.data());
+                      return RelocEntry(index, T, MakeRelocCode(color, depth, *inverse), Thumbnail(color));
                     }).share();
       } else {
         reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),

@@ -196,7 +196,8 @@ class Pipeline {
   int lost_run_ = 0;  // frames since the last accepted pose
   Relocaliser reloc_;
   // A keyframe's relocalisation entry being made on another thread (CUDA engine), and its
-  // pose; SettleKeyframe() waits for it and adds it.
+  // pose; SettleKeyframe() waits for it and adds it. (Declared after backend_: destroyed
+  // first, it waits for the thread, which reads the backend's read-back memory.)
   std::shared_future<RelocEntry> keyframe_;
   Pose keyframe_pose_ = Pose::Identity();
   void SettleKeyframe();

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <omp.h>
@@ -36,6 +37,35 @@ TEST(GpuUpload, EveryByteArrivesAtAnySizeAndThreadCount) {
         EXPECT_EQ(back[i], 0xAB) << bytes;
         EXPECT_EQ(back[32 + bytes + i], 0xAB) << bytes;
       }
+    }
+  }
+  omp_set_num_threads(threads);
+}
+
+// A frame's two parts (colour and depth) in one pass: each arrives whole at its own place,
+// at any thread count; the staging memory of each holds its part.
+TEST(GpuUpload, TwoPartsArriveEachWhole) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const int threads = omp_get_max_threads();
+  for (int n : {1, 2, 3, threads}) {
+    omp_set_num_threads(n);
+    for (const auto& [a, b] : {std::pair<std::size_t, std::size_t>{640 * 480 * 3, 640 * 480 * 4},
+                               {320 * 240 * 3, 320 * 240 * 4}, {0, 1000}, {5, 0}}) {
+      std::vector<std::uint8_t> src_a(a), src_b(b), st_a(a), st_b(b), back_a(a), back_b(b);
+      for (std::size_t i = 0; i < a; ++i) src_a[i] = std::uint8_t((i * 2654435761u) >> 11);
+      for (std::size_t i = 0; i < b; ++i) src_b[i] = std::uint8_t((i * 40503u) >> 7) ^ 0x5A;
+      void* da = cuda::Malloc(a + 1);
+      void* db = cuda::Malloc(b + 1);
+      const cuda::UploadPart parts[2] = {{da, st_a.data(), src_a.data(), a}, {db, st_b.data(), src_b.data(), b}};
+      cuda::UploadThroughStaging(parts, 2);
+      cuda::CopyDeviceToHost(back_a.data(), da, a);
+      cuda::CopyDeviceToHost(back_b.data(), db, b);
+      cuda::Free(da);
+      cuda::Free(db);
+      EXPECT_TRUE(back_a == src_a) << a << " + " << b << " bytes, " << n << " threads: the first part";
+      EXPECT_TRUE(back_b == src_b) << a << " + " << b << " bytes, " << n << " threads: the second part";
+      EXPECT_TRUE(st_a == src_a && st_b == src_b) << a << " + " << b << " bytes: staging";
     }
   }
   omp_set_num_threads(threads);
