@@ -95,6 +95,36 @@ void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
   for (const GnSystem& p : partial) acc.Merge(p);
 }
 
+// SumTerms of `first`, then of `second`, over the same grid in one pass: each chunk sums the
+// two terms on their own, and the first's sums are added in chunk order before the
+// second's, so the result is SumTerms(first) then SumTerms(second), bit for bit (one
+// parallel region instead of two; a chunk's rows read once while in cache).
+template <typename First, typename Second>
+void SumTermsInOnePass(int w, int h, const First& first, const Second& second, GnSystem& acc) {
+  constexpr int kChunkRows = 4;
+  const int chunks = (h + kChunkRows - 1) / kChunkRows;
+  std::vector<GnSystem> partial(2 * static_cast<std::size_t>(chunks));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int c = 0; c < chunks; ++c) {
+    const int y0 = c * kChunkRows, y1 = std::min(h, (c + 1) * kChunkRows);
+    GnSystem a;
+    {
+      TermBatch batch(a);
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) first(x, y, batch);
+    }
+    GnSystem b;
+    {
+      TermBatch batch(b);
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) second(x, y, batch);
+    }
+    partial[std::size_t(c)] = a;
+    partial[std::size_t(chunks + c)] = b;
+  }
+  for (const GnSystem& p : partial) acc.Merge(p);
+}
+
 }  // namespace
 
 IcpArgs MakeIcpArgs(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
@@ -143,14 +173,16 @@ GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const 
   GnSystem acc;
   const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
   const bool use_photo = o.kind != TrackerKind::kIcp;
-  if (use_icp) {
-    const IcpArgs a = MakeIcpArgs(ref, T_world_ref, live, T_world_live, o);
-    SumTerms(live.cam.width, live.cam.height, [&](int x, int y, TermBatch& s) { IcpTerm(a, x, y, s); }, acc);
+  const auto icp = [&, a = use_icp ? MakeIcpArgs(ref, T_world_ref, live, T_world_live, o) : IcpArgs{}](
+                       int x, int y, TermBatch& s) { IcpTerm(a, x, y, s); };
+  const auto photo = [&, a = use_photo ? MakePhotoArgs(ref, live, T_world_live, o) : PhotoArgs{}](
+                         int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); };
+  if (use_icp && use_photo && live.cam.width == ref.cam.width && live.cam.height == ref.cam.height) {
+    SumTermsInOnePass(live.cam.width, live.cam.height, icp, photo, acc);
+    return acc;
   }
-  if (use_photo) {
-    const PhotoArgs a = MakePhotoArgs(ref, live, T_world_live, o);
-    SumTerms(ref.cam.width, ref.cam.height, [&](int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); }, acc);
-  }
+  if (use_icp) SumTerms(live.cam.width, live.cam.height, icp, acc);
+  if (use_photo) SumTerms(ref.cam.width, ref.cam.height, photo, acc);
   return acc;
 }
 
