@@ -13,7 +13,8 @@ void ParseSize(const std::string& s, int* w, int* h) {
     throw SettingError("--size", "expected WIDTHxHEIGHT such as 320x240, got '" + s + "'");
 }
 
-std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from) {
+std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from,
+                                                           const std::string& example) {
   std::vector<std::pair<std::string, std::string>> out;
   if (from >= spec.size()) return out;
   std::stringstream ss(spec.substr(from));
@@ -21,7 +22,10 @@ std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& sp
   while (std::getline(ss, kv, ',')) {
     if (kv.empty()) continue;
     const auto eq = kv.find('=');
-    if (eq == std::string::npos) throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value");
+    if (eq == std::string::npos)
+      throw SettingError("SOURCE", "'" + kv + "' in '" + spec +
+                                       "' is not key=value (settings are key=value pairs separated by commas" +
+                                       (example.empty() ? std::string(")") : ", e.g. " + example + ")"));
     out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
   }
   return out;
@@ -31,7 +35,7 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
   const std::string prefix = "synthetic:";
   if (spec.rfind(prefix, 0) == 0) {
     sim::SimOptions o;
-    for (const auto& [k, v] : SplitSpec(spec, prefix.size())) {
+    for (const auto& [k, v] : SplitSpec(spec, prefix.size(), "synthetic:size=320x240,frames=300")) {
       try {
         if (k == "scene") o.scene = v;
         else if (k == "seed") o.seed = std::uint32_t(std::stoul(v));

@@ -18,8 +18,10 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
 
 // The "key=value,key=value" settings after a spec's "name:" (`from`: where they start);
 // empty items are skipped. Throws SettingError naming SOURCE and the item that is not
-// key=value. Used by every spec: synthetic:, openni:, and the sweep cameras.
-std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from);
+// key=value, with `example` (a spec of this kind that works) where one is given. Used by
+// every spec: synthetic:, openni:, and the sweep cameras.
+std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from,
+                                                           const std::string& example = "");
 
 // "WIDTHxHEIGHT" (throws SettingError naming --size).
 void ParseSize(const std::string& s, int* w, int* h);

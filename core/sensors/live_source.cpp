@@ -53,7 +53,7 @@ bool IsLiveSpec(const std::string& spec) { return spec.rfind("openni:", 0) == 0;
 LiveOptions ParseLiveSpec(const std::string& spec) {
   if (!IsLiveSpec(spec)) throw SettingError("SOURCE", "'" + spec + "' is not a live source (openni:...)");
   LiveOptions o;
-  for (const auto& [k, v] : io::SplitSpec(spec, 7)) {
+  for (const auto& [k, v] : io::SplitSpec(spec, 7, "openni:device=SERIAL,mode=vga,ae=off,exposure=10")) {
     try {
       std::size_t used = 0;
       auto number = [&](auto parse) {

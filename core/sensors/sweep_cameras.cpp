@@ -107,7 +107,7 @@ double Number(const std::string& key, const std::string& v) {
 std::unique_ptr<radiometry::SweepCamera> OpenSweepCamera(const std::string& spec) {
   if (spec == "synthetic" || spec.rfind("synthetic:", 0) == 0) {
     sim::SyntheticSweepOptions o;
-    for (const auto& [k, v] : io::SplitSpec(spec, 10)) {
+    for (const auto& [k, v] : io::SplitSpec(spec, 10, "synthetic:response=gamma2.2")) {
       if (k == "response") {
         if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {
           const SensorInfo s = io::ReadSensorJson(v);
@@ -142,7 +142,7 @@ std::unique_ptr<radiometry::SweepCamera> OpenSweepCamera(const std::string& spec
   if (IsLiveSpec(spec)) {
     std::optional<double> unit;
     std::string rest = "openni:";
-    for (const auto& [k, v] : io::SplitSpec(spec, 7)) {
+    for (const auto& [k, v] : io::SplitSpec(spec, 7, "openni:device=SERIAL,unit=0.1")) {
       if (k == "unit") unit = Number("unit", v);
       else if (k == "device" || k == "mode" || k == "gain") rest += k + "=" + v + ",";
       else throw SettingError("source", "unknown setting '" + k + "' for a sweep camera (device, mode, unit, gain)");

@@ -4,10 +4,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
 #include "io/sequence.h"
 #include "io/sequence_summary.h"
+#include "io/source_spec.h"
 #include "support/test_support.h"
 
 namespace hdrf::io {
@@ -193,6 +195,36 @@ TEST(Sequence, MalformedExposureAndGroundTruthNamed) {
   WriteText(dir / "groundtruth.txt", "1305031102.2 0 0 0 0 0 0 1\n1305031102.1 0 0 0 0 0 0 1\n");
   ExpectErrorContaining([&] { SequenceReader r(dir.path()); },
                         {"groundtruth.txt:2:", "increase"});
+}
+
+// A source whose settings are not key=value is refused naming the item, the spec, and a
+// spelling that works; settings that are open the synthetic scene at their size.
+TEST(SourceSpec, SettingsThatAreNotKeyValueAreRefusedWithAWorkingSpelling) {
+  try {
+    OpenSource("synthetic:320x240", "");
+    ADD_FAILURE() << "synthetic:320x240 was accepted";
+  } catch (const SettingError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'320x240' in 'synthetic:320x240' is not key=value"), std::string::npos) << what;
+    EXPECT_NE(what.find("synthetic:size=320x240,frames=300"), std::string::npos) << what;
+  }
+  try {
+    SplitSpec("openni:serial", 7);
+    ADD_FAILURE() << "openni:serial was accepted";
+  } catch (const SettingError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'serial' in 'openni:serial' is not key=value (settings are key=value pairs separated by "
+                        "commas)"),
+              std::string::npos)
+        << what;
+  }
+  const auto source = OpenSource("synthetic:size=160x120,frames=3", "");
+  EXPECT_EQ(source->sensor().camera.width, 160);
+  EXPECT_EQ(source->sensor().camera.height, 120);
+  const auto kv = SplitSpec("synthetic:size=160x120,,frames=3", 10);
+  ASSERT_EQ(kv.size(), 2u);
+  EXPECT_EQ(kv[1].first, "frames");
+  EXPECT_EQ(kv[1].second, "3");
 }
 
 }  // namespace
