@@ -23,9 +23,10 @@ std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& sp
     if (kv.empty()) continue;
     const auto eq = kv.find('=');
     if (eq == std::string::npos)
-      throw SettingError("SOURCE", "'" + kv + "' in '" + spec +
-                                       "' is not key=value (settings are key=value pairs separated by commas" +
-                                       (example.empty() ? std::string(")") : ", e.g. " + example + ")"));
+      throw SettingError("SOURCE", "'" + kv + "' in '" + spec + "' is not key=value (" +
+                                       (example.empty() ? std::string("key=value pairs, separated by commas")
+                                                        : "e.g. " + example) +
+                                       ")");
     out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
   }
   return out;
