@@ -32,9 +32,10 @@ struct NrIntegrals {
   ImageView<double> cnt, s1, s2;
 };
 // Both passes read a few entries ahead of their sums (kNrAhead at a time): the reads do not
-// wait on the stores before them, while the sums run in the same order (the same bits). On
-// the GPU a column's thread otherwise waited on each entry in turn (57 us at 640x480 on an
-// H100, of a 110 us stage).
+// wait on the stores before them, while the sums run in the same order (the same bits).
+// These are the CPU's passes (and the GPU's row pass for rows too wide for shared memory);
+// the GPU runs the same additions in its own kernels (normalized_radiance_cuda.cu: one
+// thread per column and per sum, three threads in step per row).
 inline constexpr int kNrAhead = 8;
 HDRF_HD void NrRowPass(ImageView<const float> cells, NrIntegrals in, int y) {
   double c = 0, a = 0, b = 0;
