@@ -246,73 +246,105 @@ enum StepOutcome : int {
   kStepNotFinite = 3, // the solve failed: the level stops, the pose unchanged
 };
 
-// One step: solves the damped normal equations (with the prior, where on) and moves *T.
-HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
-  if (acc.v[31] + acc.v[32] < 12) return kStepTooFew;
-  double H[36], g[6];
+// The step's parts, in the order GnStep runs them. The CUDA tracker runs the first three
+// side by side (tracking_cuda.cu: the prior's residual, the check for weak directions and
+// the factor of the system without them need only the sums and the pose), the same
+// operations on the same values: the same bits as GnStep.
+
+// The normal equations as a full 6x6 H and g.
+HDRF_HD void StepSystem(const GnSystem& acc, double H[36], double g[6]) {
   HDRF_UNROLL
   for (int i = 0, k = 0; i < 6; ++i) {
     HDRF_UNROLL
     for (int j = i; j < 6; ++j, ++k) H[6 * i + j] = H[6 * j + i] = acc.v[k];
     g[i] = acc.v[GnSystem::kH + i];
   }
-  if (prior.on) {
-    double e[6];
-    LogTwist(Compose(prior.T_predicted_inv, *T), e);
-    if (prior.floor > 0) {
-      // Directions the pixel terms fix far more weakly than their strongest one: the prior
-      // raised along them to the floor (whitened by the prior's deviations, so that metres and
-      // radians compare). Where the whitened system's smallest eigenvalue is above the floor
-      // times its trace (>= the largest eigenvalue), nothing would be raised: the
-      // decomposition is skipped (a Cholesky factor tells).
-      double sw[6], ew[6], Hw[36];
-      HDRF_UNROLL
-      for (int i = 0; i < 6; ++i) sw[i] = i < 3 ? prior.sigma_m : prior.sigma_rad, ew[i] = e[i] / sw[i];
-      double trace = 0;
-      HDRF_UNROLL
-      for (int i = 0; i < 6; ++i)
-        HDRF_UNROLL
-        for (int j = 0; j < 6; ++j) Hw[6 * i + j] = sw[i] * H[6 * i + j] * sw[j];
-      HDRF_UNROLL
-      for (int i = 0; i < 6; ++i) trace += Hw[7 * i];
-      double shifted[36], L[36];
-      HDRF_UNROLL
-      for (int k = 0; k < 36; ++k) shifted[k] = Hw[k] - (k % 7 == 0 ? prior.floor * trace : 0.0);
-      if (!Cholesky6(shifted, L)) {
-        double lam[6], V[36];
-        SymmetricEigen6(Hw, lam, V);
-        const double top = lam[5];
-        HDRF_UNROLL
-        for (int k = 0; k < 6; ++k) {
-          const double add = prior.floor * top - lam[k];
-          if (!(add > 0)) continue;
-          double u[6], vew = 0;
-          HDRF_UNROLL
-          for (int i = 0; i < 6; ++i) u[i] = V[6 * i + k] / sw[i], vew += V[6 * i + k] * ew[i];
-          HDRF_UNROLL
-          for (int i = 0; i < 6; ++i) {
-            HDRF_UNROLL
-            for (int j = 0; j < 6; ++j) H[6 * i + j] += add * u[i] * u[j];
-            g[i] += add * u[i] * vew;
-          }
-        }
-      }
-    }
+}
+HDRF_HD bool EnoughTerms(const GnSystem& acc) { return !(acc.v[31] + acc.v[32] < 12); }
+
+// How far T is from the prediction: log(T_predicted^-1 T).
+HDRF_HD void PriorResidual(const StepPrior& prior, const PoseD& T, double e[6]) {
+  LogTwist(Compose(prior.T_predicted_inv, T), e);
+}
+
+// Directions the pixel terms fix far more weakly than their strongest one are raised to the
+// prior's floor (whitened by the prior's deviations, so that metres and radians compare).
+// Where the whitened system's smallest eigenvalue is above the floor times its trace (>= the
+// largest eigenvalue), nothing would be raised: a Cholesky factor tells, and the
+// decomposition is skipped. (With prior.on and prior.floor > 0.)
+HDRF_HD void WhitenedSystem(const StepPrior& prior, const double H[36], double sw[6], double Hw[36]) {
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i) sw[i] = i < 3 ? prior.sigma_m : prior.sigma_rad;
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i)
+    HDRF_UNROLL
+    for (int j = 0; j < 6; ++j) Hw[6 * i + j] = sw[i] * H[6 * i + j] * sw[j];
+}
+HDRF_HD bool WeakDirections(const StepPrior& prior, const double H[36]) {
+  double sw[6], Hw[36];
+  WhitenedSystem(prior, H, sw, Hw);
+  double trace = 0;
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i) trace += Hw[7 * i];
+  double shifted[36], L[36];
+  HDRF_UNROLL
+  for (int k = 0; k < 36; ++k) shifted[k] = Hw[k] - (k % 7 == 0 ? prior.floor * trace : 0.0);
+  return !Cholesky6(shifted, L);
+}
+// The raise itself (where WeakDirections): H and g gain the prior along the weak directions.
+HDRF_HD void RaiseWeakDirections(const StepPrior& prior, const double e[6], double H[36], double g[6]) {
+  double sw[6], Hw[36], ew[6];
+  WhitenedSystem(prior, H, sw, Hw);
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i) ew[i] = e[i] / sw[i];
+  double lam[6], V[36];
+  SymmetricEigen6(Hw, lam, V);
+  const double top = lam[5];
+  HDRF_UNROLL
+  for (int k = 0; k < 6; ++k) {
+    const double add = prior.floor * top - lam[k];
+    if (!(add > 0)) continue;
+    double u[6], vew = 0;
+    HDRF_UNROLL
+    for (int i = 0; i < 6; ++i) u[i] = V[6 * i + k] / sw[i], vew += V[6 * i + k] * ew[i];
     HDRF_UNROLL
     for (int i = 0; i < 6; ++i) {
-      const double s = i < 3 ? prior.sigma_m : prior.sigma_rad;
-      const double lambda = 1.0 / (s * s);
-      H[7 * i] += lambda;
-      g[i] += lambda * e[i];
+      HDRF_UNROLL
+      for (int j = 0; j < 6; ++j) H[6 * i + j] += add * u[i] * u[j];
+      g[i] += add * u[i] * vew;
     }
   }
+}
+
+// The prior's information on H's diagonal, then the damping (1e-6 of the mean diagonal):
+// H as the step solves it.
+HDRF_HD void PriorInformation(const StepPrior& prior, double H[36]) {
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i) {
+    const double s = i < 3 ? prior.sigma_m : prior.sigma_rad;
+    H[7 * i] += 1.0 / (s * s);
+  }
+}
+HDRF_HD void Damp(double H[36]) {
   double trace = 0;
   HDRF_UNROLL
   for (int i = 0; i < 6; ++i) trace += H[7 * i];
   HDRF_UNROLL
   for (int i = 0; i < 6; ++i) H[7 * i] += 1e-6 * trace / 6.0;
-  double L[36], xi[6], y[6];
-  if (!Cholesky6(H, L)) return kStepNotFinite;
+}
+// The prior's pull on g.
+HDRF_HD void PriorGradient(const StepPrior& prior, const double e[6], double g[6]) {
+  HDRF_UNROLL
+  for (int i = 0; i < 6; ++i) {
+    const double s = i < 3 ? prior.sigma_m : prior.sigma_rad;
+    const double lambda = 1.0 / (s * s);
+    g[i] += lambda * e[i];
+  }
+}
+
+// From H's Cholesky factor L and g: the twist, *T moved by it, and whether it converged.
+HDRF_HD int SolveAndMove(const double L[36], const double g[6], PoseD* T) {
+  double xi[6], y[6];
   HDRF_UNROLL
   for (int i = 0; i < 6; ++i) {  // L y = -g
     double v = -g[i];
@@ -334,6 +366,24 @@ HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
   const double nt = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
   const double nw = sqrt(xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
   return nt < kStop && nw < kStop ? kStepConverged : kStepTaken;
+}
+
+// One step: solves the damped normal equations (with the prior, where on) and moves *T.
+HDRF_HD int GnStep(const GnSystem& acc, const StepPrior& prior, PoseD* T) {
+  if (!EnoughTerms(acc)) return kStepTooFew;
+  double H[36], g[6];
+  StepSystem(acc, H, g);
+  if (prior.on) {
+    double e[6];
+    PriorResidual(prior, *T, e);
+    if (prior.floor > 0 && WeakDirections(prior, H)) RaiseWeakDirections(prior, e, H, g);
+    PriorInformation(prior, H);
+    PriorGradient(prior, e, g);
+  }
+  Damp(H);
+  double L[36];
+  if (!Cholesky6(H, L)) return kStepNotFinite;
+  return SolveAndMove(L, g, T);
 }
 
 }  // namespace hdrf::tracking

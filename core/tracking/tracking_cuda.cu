@@ -58,16 +58,20 @@ __global__ void StartRun(DeviceTrack* d) {
 // The term arguments of a level at the run's current pose.
 __device__ void SetPoseArgs(DeviceTrack* d, int level) {
   DeviceRun& s = d->run;
-  const PoseD T = s.T;
-  IcpArgs icp = d->frame.icp[level];
-  PhotoArgs photo = d->frame.photo[level];
-  icp.T_world_live = ToRigid(T);
-  for (int k = 0; k < 9; ++k) icp.R_world_live[k] = T.R[k];
-  photo.T_live_world = ToRigid(Inverse(T));
-  s.icp = icp;
-  s.photo = photo;
+  s.icp = d->frame.icp[level];
+  s.photo = d->frame.photo[level];
 }
-__global__ void StartLevel(DeviceTrack* d, int level) { SetPoseArgs(d, level); }
+// Within a level only the pose's parts change.
+__device__ void SetPose(DeviceRun& s) {
+  const PoseD T = s.T;
+  s.icp.T_world_live = ToRigid(T);
+  for (int k = 0; k < 9; ++k) s.icp.R_world_live[k] = T.R[k];
+  s.photo.T_live_world = ToRigid(Inverse(T));
+}
+__global__ void StartLevel(DeviceTrack* d, int level) {
+  SetPoseArgs(d, level);
+  SetPose(d->run);
+}
 __global__ void KeepValid(DeviceTrack* d, const double* sums) {
   d->run.valid[0] = sums[0];
   d->run.valid[1] = sums[1];
@@ -82,12 +86,59 @@ __device__ void CountValid(const IcpArgs& a, int x, int y, Count2& acc) {
 
 // One step from the level's sums (a kernel of its own: inside the sum's kernel its registers
 // would be the whole sum's), and whether the level goes on: fewer steps than its cap, the
-// last neither converged nor failed.
-__global__ void TakeStep(DeviceTrack* d, const double* sums, int level, int cap, cudaGraphConditionalHandle go_on) {
+// last neither converged nor failed. GnStep's parts that need only the sums and the pose run
+// side by side, one warp each (the step is one thread's chain of divisions and square roots):
+// the prior's residual, the check for weak directions, and the factor of H as solved where
+// there are none (the common case; where there are, the first thread raises them and
+// factors again). The same operations on the same values as GnStep: the same bits.
+constexpr int kStepWarps = 3;
+__global__ void __launch_bounds__(32 * kStepWarps)
+    TakeStep(DeviceTrack* d, const double* sums, int level, int cap, cudaGraphConditionalHandle go_on) {
+  __shared__ double e[6], L[36];
+  __shared__ bool weak, factored;
   DeviceRun& s = d->run;
+  const StepPrior& prior = d->frame.prior;
+  const int part = threadIdx.x / 32;
   GnSystem acc;
-  for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
-  const int out = GnStep(acc, d->frame.prior, &s.T);
+  double H[36], g[6];
+  if (threadIdx.x % 32 == 0) {
+    for (int k = 0; k < GnSystem::kSize; ++k) acc.v[k] = sums[k];
+    StepSystem(acc, H, g);
+    if (part == 0 && prior.on) {
+      PriorResidual(prior, s.T, e);
+    } else if (part == 1) {
+      weak = prior.on && prior.floor > 0 && WeakDirections(prior, H);
+    } else if (part == 2) {
+      if (prior.on) PriorInformation(prior, H);
+      Damp(H);
+      double Lr[36];
+      factored = Cholesky6(H, Lr);
+      for (int k = 0; k < 36; ++k) L[k] = Lr[k];
+    }
+  }
+  __syncthreads();
+  if (threadIdx.x != 0) return;
+  int out = kStepTooFew;
+  if (EnoughTerms(acc)) {
+    double Lr[36];
+    bool ok = factored;
+    if (prior.on && weak) {
+      double ev[6];
+      for (int k = 0; k < 6; ++k) ev[k] = e[k];
+      RaiseWeakDirections(prior, ev, H, g);
+      PriorInformation(prior, H);
+      Damp(H);
+      ok = Cholesky6(H, Lr);
+    } else {
+      for (int k = 0; k < 36; ++k) Lr[k] = L[k];
+    }
+    if (prior.on) {
+      double ev[6];
+      for (int k = 0; k < 6; ++k) ev[k] = e[k];
+      PriorGradient(prior, ev, g);
+    }
+    out = ok ? SolveAndMove(Lr, g, &s.T) : kStepNotFinite;
+  }
   bool more = false;
   if (out == kStepTaken || out == kStepConverged) {
     ++s.iterations;
@@ -95,7 +146,7 @@ __global__ void TakeStep(DeviceTrack* d, const double* sums, int level, int cap,
     if (level == 0) s.last = acc;
     more = out == kStepTaken && s.level_iterations[level] < cap;
   }
-  if (more) SetPoseArgs(d, level);
+  if (more) SetPose(s);
   cudaGraphSetConditional(go_on, more ? 1u : 0u);
 }
 
@@ -179,7 +230,7 @@ cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* h
           if (use_photo) PhotoTerm(rd->run.photo, x, y, acc);
         },
         body_stream);
-    TakeStep<<<1, 1, 0, body_stream>>>(d, reducer.device_sums(), l, iters, go_on);
+    TakeStep<<<1, 32 * kStepWarps, 0, body_stream>>>(d, reducer.device_sums(), l, iters, go_on);
     cudaGraph_t body = nullptr;
     HDRF_CUDA_CHECK(cudaStreamEndCapture(body_stream, &body));
   }
