@@ -39,6 +39,7 @@ ExposureEstimate WeightedMedianRatio(std::vector<std::pair<float, float>>& sampl
   for (auto& s : samples) {
     acc += s.second;
     if (acc >= 0.5 * total) {
+      e.log_ratio = s.first;
       e.ratio = std::exp(double(s.first));
       break;
     }

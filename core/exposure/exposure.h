@@ -24,6 +24,7 @@ struct ExposureOptions {
 };
 struct ExposureEstimate {
   double ratio = 1;
+  float log_ratio = 0;  // the median sample's log ratio (ratio = exp of it)
   long samples = 0;
   bool valid = false;
 };

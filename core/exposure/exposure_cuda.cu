@@ -1,7 +1,5 @@
-#include <cub/device/device_radix_sort.cuh>
-#include <cub/device/device_scan.cuh>
-
 #include <algorithm>
+#include <cmath>
 
 #include "common/parallel_cuda.cuh"
 #include "exposure/exposure_gpu.h"
@@ -9,22 +7,148 @@
 
 namespace hdrf::exposure {
 
+// The weighted median without sorting: the median sample's key is the smallest key k whose
+// samples at or below it weigh at least half of all, so it is found by its bits, 11, 11 and
+// 10 at a time (a radix select): each pass sums the weights of the samples in each bin of
+// the next bits among those that share the bits found so far, and the last block to finish
+// picks the bin where half the weight is reached. The weights are summed as integers (fixed
+// point, 2^-40 a unit for up to a million samples): the sums are exact and do not depend on
+// the order the threads add them in, so the pick is the one the CPU's sorted sum makes
+// wherever its double sums are exact (weights of at least 2^-12 for 2^17 samples).
+namespace {
+constexpr int kThreads = 256;
+constexpr int kBlocks = 132;
+// Pass p's bits: 31-21, 20-10, 9-0.
+__device__ int PassBits(int pass) { return pass == 2 ? 10 : 11; }
+__device__ int PassShift(int pass) { return pass == 0 ? 21 : pass == 1 ? 10 : 0; }
+constexpr int kMaxBins = 1 << 11;
+
+struct SelectState {
+  unsigned long long count, total, below;  // samples; their weight; the weight under the prefix
+  unsigned prefix;                          // the key's bits found so far
+  unsigned done;                            // blocks finished in this pass
+};
+
+// A float's bits as an unsigned whose order is the floats' order.
+__device__ unsigned OrderedKey(float f) {
+  const unsigned b = __float_as_uint(f);
+  return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+}
+__device__ float KeyFloat(unsigned u) { return __uint_as_float((u & 0x80000000u) ? (u & 0x7fffffffu) : ~u); }
+
+// One pass over the samples (key, weight; weight 0: no sample): bins of `pass`'s bits among
+// those matching the prefix; the last block picks the bin and, after the last pass, writes
+// (count, ratio) to out.
+__global__ void __launch_bounds__(kThreads)
+    SelectPass(int pass, int n, const unsigned* keys, const unsigned long long* weights, unsigned long long* bins,
+               SelectState* st, double* out) {
+  __shared__ unsigned long long sh[kMaxBins];
+  __shared__ unsigned long long shn;
+  const int bits = PassBits(pass), shift = PassShift(pass), nbins = 1 << bits;
+  for (int b = threadIdx.x; b < nbins; b += kThreads) sh[b] = 0;
+  if (threadIdx.x == 0) shn = 0;
+  __syncthreads();
+  const unsigned prefix = st->prefix;
+  unsigned long long mine = 0;
+  for (int i = blockIdx.x * kThreads + threadIdx.x; i < n; i += gridDim.x * kThreads) {
+    const unsigned long long w = weights[i];
+    if (w == 0) continue;
+    const unsigned k = keys[i];
+    if (pass > 0 && (k >> (shift + bits)) != prefix) continue;
+    atomicAdd(&sh[(k >> shift) & unsigned(nbins - 1)], w);
+    ++mine;
+  }
+  if (pass == 0 && mine) atomicAdd(&shn, mine);
+  __syncthreads();
+  for (int b = threadIdx.x; b < nbins; b += kThreads)
+    if (sh[b]) atomicAdd(&bins[b], sh[b]);
+  if (pass == 0 && threadIdx.x == 0 && shn) atomicAdd(&st->count, shn);
+  // The last block to finish picks the bin.
+  __shared__ bool last;
+  __threadfence();
+  __syncthreads();
+  if (threadIdx.x == 0) last = atomicAdd(&st->done, 1u) == gridDim.x - 1;
+  __syncthreads();
+  if (!last) return;
+  __threadfence();
+  // Each thread's run of bins, its sum, and the sums of the runs before it (a scan).
+  const int per = nbins / kThreads;  // 8 or 4
+  unsigned long long run = 0;
+  for (int j = 0; j < per; ++j) {
+    const int b = threadIdx.x * per + j;
+    sh[b] = __ldcg(bins + b);
+    bins[b] = 0;  // ready for the next pass
+    run += sh[b];
+  }
+  __shared__ unsigned long long scan[kThreads];
+  scan[threadIdx.x] = run;
+  __syncthreads();
+  for (int off = 1; off < kThreads; off <<= 1) {
+    const unsigned long long add = threadIdx.x >= off ? scan[threadIdx.x - off] : 0;
+    __syncthreads();
+    scan[threadIdx.x] += add;
+    __syncthreads();
+  }
+  if (pass == 0 && threadIdx.x == kThreads - 1) st->total = scan[kThreads - 1];
+  __syncthreads();
+  const unsigned long long total = st->total, below = st->below;
+  unsigned long long at = below + scan[threadIdx.x] - run;  // the weight before this run
+  for (int j = 0; j < per && total > 0; ++j) {
+    const int b = threadIdx.x * per + j;
+    const unsigned long long next = at + sh[b];
+    if (2 * at < total && 2 * next >= total) {  // half the weight is reached in this bin
+      st->prefix = (pass == 0 ? 0u : prefix << bits) | unsigned(b);
+      st->below = at;
+    }
+    at = next;
+  }
+  __syncthreads();
+  if (threadIdx.x != 0) return;
+  st->done = 0;
+  if (pass < 2) return;
+  const float key = KeyFloat(st->prefix);
+  out[0] = double(st->count);
+  out[1] = total > 0 ? exp(double(key)) : 0.0;
+  out[2] = total > 0 ? double(key) : 0.0;
+  st->count = st->total = st->below = 0;
+  st->prefix = 0;
+}
+
+// The fixed point of the weights (confidences, at most 1): 2^40 a unit, fewer bits where the
+// samples' sum (twice it, in the pick) would not fit in 64 bits with room for weights up to 4.
+int WeightShift(long n) {
+  int log2n = 0;
+  while ((1L << log2n) < n) ++log2n;
+  return std::min(40, 60 - log2n);
+}
+
+// The sample's key and weight as SelectPass reads them: 0 weight where there is no sample.
+__device__ void StoreSample(bool valid, float key, float weight, double scale, unsigned* k,
+                                   unsigned long long* w) {
+  if (valid) {
+    *k = OrderedKey(key);
+    // (at least one unit: a sample lighter than the fixed point's unit still counts, as on the CPU)
+    const unsigned long long fixed = (unsigned long long)(double(weight) * scale);
+    *w = fixed > 0 ? fixed : 1;
+  } else {
+    *k = 0;
+    *w = 0;
+  }
+}
+}  // namespace
+
 GpuExposureEstimator::GpuExposureEstimator(int width, int height, const ExposureOptions& o)
     : o_(o), sw_((width + o.stride - 1) / o.stride), sh_((height + o.stride - 1) / o.stride), pose_(1) {
   const std::size_t ns = std::size_t(sw_) * std::size_t(sh_);
-  keys_ = DeviceBuffer<float>(ns);
-  vals_ = DeviceBuffer<float>(ns);
-  keys_sorted_ = DeviceBuffer<float>(ns);
-  vals_sorted_ = DeviceBuffer<float>(ns);
-  cum_ = DeviceBuffer<double>(ns);
-  out_ = DeviceBuffer<double>(2);
-  std::size_t sort_bytes = 0, cum_bytes = 0;
-  HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, sort_bytes, keys_.data(), keys_sorted_.data(),
-                                                  vals_.data(), vals_sorted_.data(), int(ns)));
-  HDRF_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, cum_bytes, cum_.data(), cum_.data(), int(ns)));
-  temp_ = DeviceBuffer<std::uint8_t>(std::max({sort_bytes, cum_bytes, std::size_t(16)}));
+  keys_ = DeviceBuffer<unsigned>(ns);
+  weights_ = DeviceBuffer<unsigned long long>(ns);
+  bins_ = DeviceBuffer<unsigned long long>(kMaxBins);
+  state_ = DeviceBuffer<std::uint8_t>(sizeof(SelectState));
+  out_ = DeviceBuffer<double>(3);
+  HDRF_CUDA_CHECK(cudaMemset(bins_.data(), 0, sizeof(unsigned long long) * kMaxBins));
+  HDRF_CUDA_CHECK(cudaMemset(state_.data(), 0, sizeof(SelectState)));
   HDRF_CUDA_CHECK(cudaMallocHost(&host_pose_, sizeof(tracking::PoseD)));
-  HDRF_CUDA_CHECK(cudaMallocHost(&host_out_, 2 * sizeof(double)));
+  HDRF_CUDA_CHECK(cudaMallocHost(&host_out_, 3 * sizeof(double)));
 }
 
 GpuExposureEstimator::~GpuExposureEstimator() {
@@ -41,45 +165,28 @@ ExposureEstimate GpuExposureEstimator::Estimate(const ExposureArgs& a, const Pos
 }
 
 void GpuExposureEstimator::Queue(const ExposureArgs& a, const tracking::PoseD* T_world_live, cudaStream_t stream) {
-  const int stride = o_.stride, sw = sw_, sh = sh_, n = sw * sh;
-  float *keys = keys_.data(), *vals = vals_.data();
-  const par::Gpu g{stream};
-  par::ForEachPixel(g, sw, sh, [=] __device__(int x, int y) {
+  const int stride = o_.stride, sw = sw_, sh = sh_;
+  unsigned* keys = keys_.data();
+  unsigned long long* weights = weights_.data();
+  const double scale = std::ldexp(1.0, WeightShift(long(sw) * sh));
+  par::ForEachPixel(par::Gpu{stream}, sw, sh, [=] __device__(int x, int y) {
     ExposureArgs b = a;
     b.T_live_world = tracking::ToRigid(tracking::Inverse(*T_world_live));
-    float lr, wt;
-    const int i = y * sw + x;
-    if (ExposureSample(b, stride * x, stride * y, &lr, &wt)) {
-      keys[i] = lr;
-      vals[i] = wt;
-    } else {
-      keys[i] = INFINITY;  // sorts after every valid sample
-      vals[i] = 0.f;
-    }
+    float lr = 0.f, wt = 0.f;
+    const bool valid = ExposureSample(b, stride * x, stride * y, &lr, &wt);
+    StoreSample(valid, lr, wt, scale, keys + (y * sw + x), weights + (y * sw + x));
   });
-  std::size_t bytes = temp_.size();
-  HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp_.data(), bytes, keys_.data(), keys_sorted_.data(),
-                                                  vals_.data(), vals_sorted_.data(), n, 0, int(8 * sizeof(float)),
-                                                  stream));
-  const float *ks = keys_sorted_.data(), *vs = vals_sorted_.data();
-  double* cum = cum_.data();
-  par::ForEach(g, n, [=] __device__(int i) { cum[i] = vs[i]; });
-  bytes = temp_.size();
-  HDRF_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp_.data(), bytes, cum, cum, n, stream));
-  double* out = out_.data();
-  HDRF_CUDA_CHECK(cudaMemsetAsync(out, 0, 2 * sizeof(double), stream));
-  // Valid samples are the finite keys at the front; the median is the first sample whose
-  // cumulative weight reaches half of the total.
-  par::ForEach(g, n, [=] __device__(int i) {
-    if (isfinite(ks[i]) && (i + 1 == n || !isfinite(ks[i + 1]))) out[0] = double(i + 1);
-  });
-  par::ForEach(g, n, [=] __device__(int i) {
-    const int count = int(out[0]);
-    if (i >= count) return;
-    const double half = 0.5 * cum[count - 1];
-    if (cum[i] >= half && (i == 0 || cum[i - 1] < half)) out[1] = exp(double(ks[i]));
-  });
-  HDRF_CUDA_CHECK(cudaMemcpyAsync(host_out_, out, 2 * sizeof(double), cudaMemcpyDeviceToHost, stream));
+  QueueSelect(sw * sh, stream);
+}
+
+void GpuExposureEstimator::QueueSelect(int n, cudaStream_t stream) {
+  auto* st = reinterpret_cast<SelectState*>(state_.data());
+  const int blocks = std::max(1, std::min(kBlocks, (n + kThreads - 1) / kThreads));
+  for (int pass = 0; pass < 3; ++pass) {
+    SelectPass<<<blocks, kThreads, 0, stream>>>(pass, n, keys_.data(), weights_.data(), bins_.data(), st, out_.data());
+    HDRF_CUDA_CHECK_LAUNCH();
+  }
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(host_out_, out_.data(), 3 * sizeof(double), cudaMemcpyDeviceToHost, stream));
 }
 
 ExposureEstimate GpuExposureEstimator::Result() const {
@@ -87,8 +194,35 @@ ExposureEstimate GpuExposureEstimator::Result() const {
   e.samples = long(host_out_[0]);
   if (e.samples < o_.min_samples) return e;
   e.ratio = host_out_[1];
+  e.log_ratio = float(host_out_[2]);
   e.valid = true;
   return e;
+}
+
+ExposureEstimate GpuWeightedMedianRatio(const std::vector<std::pair<float, float>>& samples, int min_samples) {
+  ExposureOptions o;
+  o.stride = 1;
+  o.min_samples = min_samples;
+  const int n = std::max(1, int(samples.size()));
+  GpuExposureEstimator est(n, 1, o);
+  std::vector<float> k(samples.size()), w(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) k[i] = samples[i].first, w[i] = samples[i].second;
+  DeviceBuffer<float> dk(k.size()), dw(w.size());
+  if (!k.empty()) {
+    HDRF_CUDA_CHECK(cudaMemcpy(dk.data(), k.data(), sizeof(float) * k.size(), cudaMemcpyHostToDevice));
+    HDRF_CUDA_CHECK(cudaMemcpy(dw.data(), w.data(), sizeof(float) * w.size(), cudaMemcpyHostToDevice));
+  }
+  const float *kp = dk.data(), *wp = dw.data();
+  unsigned* keys = est.keys_.data();
+  unsigned long long* weights = est.weights_.data();
+  const double scale = std::ldexp(1.0, WeightShift(n));
+  const int count = int(samples.size());
+  par::ForEach(par::Gpu{}, n, [=] __device__(int i) {
+    StoreSample(i < count, i < count ? kp[i] : 0.f, i < count ? wp[i] : 0.f, scale, keys + i, weights + i);
+  });
+  est.QueueSelect(n, nullptr);
+  HDRF_CUDA_CHECK(cudaStreamSynchronize(nullptr));
+  return est.Result();
 }
 
 }  // namespace hdrf::exposure

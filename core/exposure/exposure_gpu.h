@@ -1,6 +1,7 @@
 // Exposure compensation on the GPU (exposure_cuda.cu): the same samples (exposure_impl.h)
-// and the same confidence-weighted median as EstimateExposureRatio, with CUB's radix sort
-// and scan. Built only with CUDA; the buffers are sized once for the frame.
+// and the same confidence-weighted median as EstimateExposureRatio, found by a radix select
+// over the keys' bits with the weights summed exactly (no sort). Built only with CUDA; the
+// buffers are sized once for the frame.
 //
 // The live frame's pose reaches the device as doubles, and the transform the samples use is
 // made from it there: an estimate queued behind the tracker's run, at the pose the run leaves
@@ -10,12 +11,18 @@
 #include <cuda_runtime_api.h>
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "common/device_buffer.h"
 #include "exposure/exposure.h"
 #include "tracking/gn_step.h"
 
 namespace hdrf::exposure {
+
+class GpuExposureEstimator;
+// WeightedMedianRatio (exposure.h) on the GPU, through the estimator's own selection: for tests.
+ExposureEstimate GpuWeightedMedianRatio(const std::vector<std::pair<float, float>>& samples, int min_samples = 50);
 
 class GpuExposureEstimator {
  public:
@@ -32,11 +39,16 @@ class GpuExposureEstimator {
   ExposureEstimate Result() const;
 
  private:
+  friend ExposureEstimate GpuWeightedMedianRatio(const std::vector<std::pair<float, float>>&, int);
+  // The selection over the first n samples in keys_ and weights_, queued on `stream`.
+  void QueueSelect(int n, cudaStream_t stream);
   ExposureOptions o_;
   int sw_ = 0, sh_ = 0;  // the sample grid (every stride-th pixel)
-  DeviceBuffer<float> keys_, vals_, keys_sorted_, vals_sorted_;
-  DeviceBuffer<double> cum_, out_;  // out: (count, ratio)
-  DeviceBuffer<std::uint8_t> temp_;
+  DeviceBuffer<unsigned> keys_;                  // each sample's key, as ordered bits
+  DeviceBuffer<unsigned long long> weights_;     // its weight in fixed point; 0: no sample
+  DeviceBuffer<unsigned long long> bins_;        // a pass's bins (zero between passes)
+  DeviceBuffer<std::uint8_t> state_;             // the selection's state (exposure_cuda.cu)
+  DeviceBuffer<double> out_;                     // (count, ratio, log ratio)
   DeviceBuffer<tracking::PoseD> pose_;  // Estimate's pose, on the device
   tracking::PoseD* host_pose_ = nullptr;  // pinned
   double* host_out_ = nullptr;           // pinned: out, read back

@@ -1,12 +1,15 @@
-// The exposure estimate on the GPU (CUB's radix sort and scan) against the CPU's (sorted) on
-// identical inputs, at poses away from the origin; and the estimate queued behind a run, at a
-// pose in device memory, against the one made at that pose. Skips (with the reason) where no
-// GPU is usable.
+// The exposure estimate on the GPU (a radix select with exact integer weight sums) against
+// the CPU's (sorted) on identical inputs, at poses away from the origin; the selection alone
+// on samples chosen to be hard for it; and the estimate queued behind a run, at a pose in
+// device memory, against the one made at that pose. Skips (with the reason) where no GPU is
+// usable.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/cuda_runtime.h"
 #include "common/se3.h"
@@ -80,11 +83,76 @@ TEST(GpuExposureParity, WeightedMedianMatchesTheCpu) {
     EXPECT_EQ(gpu.samples, cpu.samples) << "seed " << c.seed;
     EXPECT_EQ(gpu.valid, cpu.valid) << "seed " << c.seed;
     EXPECT_NEAR(gpu.ratio, cpu.ratio, 1e-12 * cpu.ratio) << "seed " << c.seed;
+    if (cpu.valid) EXPECT_EQ(gpu.log_ratio, cpu.log_ratio) << "seed " << c.seed;  // the same sample
     if (c.invalid < 1) {
       EXPECT_TRUE(cpu.valid);
       EXPECT_NEAR(cpu.ratio, c.t, 0.25 * c.t) << "seed " << c.seed;  // the scene's ratio, within its spread
     }
   }
+#endif
+}
+
+// The selection alone against the CPU's sorted sum, on samples chosen to catch a wrong bit:
+// keys of every sign and magnitude (zeros of both signs, an infinite ratio), many equal keys,
+// half the weight reached exactly at a key's last sample, weights from 1e-4 to 1, a few heavy
+// samples among many light ones, and too few samples.
+TEST(GpuExposureParity, WeightedMedianOfHardSamplesIsTheCpus) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+#if HDRF_HAS_CUDA
+  using Samples = std::vector<std::pair<float, float>>;
+  std::vector<std::pair<std::string, Samples>> cases;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  {
+    Samples s;  // wide keys, both signs (the median a positive key of some magnitude)
+    for (int i = 0; i < 200000; ++i) {
+      const float mag = std::pow(10.f, -30.f + 60.f * u(rng));
+      s.emplace_back(u(rng) < 0.3f ? -mag : mag, 1e-4f + (1.f - 1e-4f) * u(rng));
+    }
+    s.emplace_back(0.f, 1.f);
+    s.emplace_back(-0.f, 1.f);
+    s.emplace_back(INFINITY, 1.f);
+    cases.emplace_back("wide keys", s);
+  }
+  {
+    Samples s;  // 7 distinct keys, many samples each
+    for (int i = 0; i < 100000; ++i) s.emplace_back(0.1f * float(int(7 * u(rng)) - 3), 0.01f + 0.99f * u(rng));
+    cases.emplace_back("7 keys", s);
+  }
+  for (int k = 1; k <= 4; ++k) {
+    Samples s;  // weights of 0.25: half the weight reached exactly at the end of a key's run
+    for (int i = 0; i < 8 * k; ++i) s.emplace_back(float(i / k) - 3.5f, 0.25f);
+    cases.emplace_back("exact half " + std::to_string(k), s);
+  }
+  {
+    Samples s;  // a few heavy samples among light ones
+    for (int i = 0; i < 50000; ++i) s.emplace_back(0.5f + 0.01f * u(rng), 1e-4f);
+    for (int i = 0; i < 30; ++i) s.emplace_back(-0.2f - 0.01f * float(i), 0.2f);
+    cases.emplace_back("heavy few", s);
+  }
+  {
+    Samples s;  // neighbouring floats: keys that differ in the last bit only
+    for (int i = 0; i < 4000; ++i) s.emplace_back(i % 2 ? std::nextafter(0.3f, 1.f) : 0.3f, 0.001f + u(rng));
+    cases.emplace_back("last bit", s);
+  }
+  cases.emplace_back("too few", Samples{{0.1f, 1.f}, {0.2f, 1.f}});
+  cases.emplace_back("none", Samples{});
+  for (auto& [name, samples] : cases) {
+    const int min_samples = name == "too few" ? 3 : 1;
+    Samples sorted = samples;
+    const ExposureEstimate cpu = WeightedMedianRatio(sorted, min_samples);
+    const ExposureEstimate gpu = GpuWeightedMedianRatio(samples, min_samples);
+    std::printf("%s: %zu samples, CPU %s log ratio %a (ratio %.17g), GPU %s log ratio %a (ratio %.17g)\n",
+                name.c_str(), samples.size(), cpu.valid ? "valid" : "invalid", cpu.log_ratio, cpu.ratio,
+                gpu.valid ? "valid" : "invalid", gpu.log_ratio, gpu.ratio);
+    EXPECT_EQ(gpu.samples, cpu.samples) << name;
+    EXPECT_EQ(gpu.valid, cpu.valid) << name;
+    if (!cpu.valid) continue;
+    EXPECT_EQ(gpu.log_ratio, cpu.log_ratio) << name;  // the same sample's key, bit for bit
+    if (std::isfinite(cpu.ratio)) EXPECT_NEAR(gpu.ratio, cpu.ratio, 1e-15 * cpu.ratio) << name;
+  }
+  EXPECT_FALSE(cases.empty());
 #endif
 }
 
