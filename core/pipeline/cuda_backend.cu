@@ -110,11 +110,11 @@ class CudaBackend final : public Backend {
     const std::size_t cb = color.size() * sizeof(Rgb8), db = depth_m.size() * sizeof(float);
     if (cb > stage_.color_bytes || db > stage_.depth_bytes)
       throw Error("the frame is larger than the camera the GPU pipeline was set up for");
-    HDRF_CUDA_CHECK(cudaEventSynchronize(stage_.sent));  // the last frame has left the staging memory
+    HDRF_CUDA_CHECK(cudaEventSynchronize(stage_.copied));  // the last frame has left the staging memory
     const cuda::UploadPart parts[2] = {{color_.data(), stage_.color, color.data(), cb},
                                        {depth_raw_.data(), stage_.depth, depth_m.data(), db}};
     cuda::UploadThroughStaging(parts, 2);
-    HDRF_CUDA_CHECK(cudaEventRecord(stage_.sent, 0));
+    HDRF_CUDA_CHECK(cudaEventRecord(stage_.copied, 0));
     radiometry::ConvertFrameOnGpu(color_.view(), inverse_.data(), pcf_.data(), radiance_.view(), conf_.view(),
                                   maxconf_.view());
     if (o_.depth.bilateral) imaging::BilateralFilterOnGpu(depth_raw_.view(), bilateral_.data(), depth_.view());
@@ -260,11 +260,11 @@ class CudaBackend final : public Backend {
   void Synchronize() override { cuda::Synchronize(); }
   bool ReadBackFrame(FrameReadback* out) override {
     // Queued on the default stream, before the next frame's upload overwrites the frame.
-    if (!readback_) readback_ = std::make_unique<Readback>(stage_);
+    if (!readback_) readback_ = std::make_unique<PinnedFrame>(cam_);
     HDRF_CUDA_CHECK(cudaMemcpyAsync(readback_->color, color_.data(), readback_->color_bytes, cudaMemcpyDeviceToHost, 0));
     HDRF_CUDA_CHECK(cudaMemcpyAsync(readback_->depth, depth_raw_.data(), readback_->depth_bytes, cudaMemcpyDeviceToHost, 0));
-    HDRF_CUDA_CHECK(cudaEventRecord(readback_->there, 0));
-    const cudaEvent_t there = readback_->there;
+    HDRF_CUDA_CHECK(cudaEventRecord(readback_->copied, 0));
+    const cudaEvent_t there = readback_->copied;
     out->color = static_cast<const Rgb8*>(readback_->color);
     out->depth = static_cast<const float*>(readback_->depth);
     out->wait = [there] { HDRF_CUDA_CHECK(cudaEventSynchronize(there)); };
@@ -368,53 +368,34 @@ class CudaBackend final : public Backend {
       tracking::BuildReferenceLevelOnGpu(ref_[l - 1]->views(), ref_[l]->views());
   }
 
-  // Pinned host memory a frame goes to the GPU through; `sent` marks its copies queued.
-  struct Staging {
+  // Pinned host memory for one frame's colour and depth, and an event that marks the last
+  // copies queued to or from it (recorded once at the start: nothing to wait for).
+  struct PinnedFrame {
     void* color = nullptr;
     void* depth = nullptr;
     std::size_t color_bytes = 0, depth_bytes = 0;
-    cudaEvent_t sent = nullptr;
-    explicit Staging(const PinholeCamera& c)
+    cudaEvent_t copied = nullptr;
+    explicit PinnedFrame(const PinholeCamera& c)
         : color_bytes(std::size_t(c.width) * std::size_t(c.height) * sizeof(Rgb8)),
           depth_bytes(std::size_t(c.width) * std::size_t(c.height) * sizeof(float)) {
       HDRF_CUDA_CHECK(cudaMallocHost(&color, color_bytes));
       HDRF_CUDA_CHECK(cudaMallocHost(&depth, depth_bytes));
-      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&sent, cudaEventDisableTiming));
-      HDRF_CUDA_CHECK(cudaEventRecord(sent, 0));
+      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&copied, cudaEventDisableTiming));
+      HDRF_CUDA_CHECK(cudaEventRecord(copied, 0));
     }
-    ~Staging() {
-      cudaEventDestroy(sent);
+    ~PinnedFrame() {
+      cudaEventDestroy(copied);
       cudaFreeHost(depth);
       cudaFreeHost(color);
     }
-    Staging(const Staging&) = delete;
-    Staging& operator=(const Staging&) = delete;
-  };
-
-  // Pinned host memory a frame is read back into (ReadBackFrame), made at the first.
-  struct Readback {
-    void* color = nullptr;
-    void* depth = nullptr;
-    std::size_t color_bytes = 0, depth_bytes = 0;
-    cudaEvent_t there = nullptr;
-    explicit Readback(const Staging& s) : color_bytes(s.color_bytes), depth_bytes(s.depth_bytes) {
-      HDRF_CUDA_CHECK(cudaMallocHost(&color, color_bytes));
-      HDRF_CUDA_CHECK(cudaMallocHost(&depth, depth_bytes));
-      HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&there, cudaEventDisableTiming));
-    }
-    ~Readback() {
-      cudaEventDestroy(there);
-      cudaFreeHost(depth);
-      cudaFreeHost(color);
-    }
-    Readback(const Readback&) = delete;
-    Readback& operator=(const Readback&) = delete;
+    PinnedFrame(const PinnedFrame&) = delete;
+    PinnedFrame& operator=(const PinnedFrame&) = delete;
   };
 
   const PipelineOptions o_;
   PinholeCamera cam_;
-  Staging stage_{cam_};
-  std::unique_ptr<Readback> readback_;
+  PinnedFrame stage_{cam_};              // a frame goes to the GPU through it
+  std::unique_ptr<PinnedFrame> readback_;  // a frame read back into it (ReadBackFrame), made at the first
   DeviceBuffer<imaging::BilateralTables> bilateral_{1};  // (device memory)
   DeviceBuffer<float> inverse_, pcf_;
   DeviceImage<Rgb8> color_;
