@@ -38,30 +38,48 @@ __device__ float KeyFloat(unsigned u) { return __uint_as_float((u & 0x80000000u)
 
 // One pass over the samples (key, weight; weight 0: no sample): bins of `pass`'s bits among
 // those matching the prefix; the last block picks the bin and, after the last pass, writes
-// (count, ratio) to out.
+// (count, ratio, log ratio) to out. The first pass makes the samples (`make(i, &key,
+// &weight)`) and stores them for the others. A block sums its bins in shared memory as two
+// 32-bit halves (the low half's carries added to the high half): 32-bit atomics are the
+// hardware's own there, and many samples of a frame share a bin.
+template <typename Make>
 __global__ void __launch_bounds__(kThreads)
-    SelectPass(int pass, int n, const unsigned* keys, const unsigned long long* weights, unsigned long long* bins,
+    SelectPass(int pass, int n, Make make, unsigned* keys, unsigned long long* weights, unsigned long long* bins,
                SelectState* st, double* out) {
-  __shared__ unsigned long long sh[kMaxBins];
+  __shared__ unsigned long long sh[kMaxBins];  // the halves while summing; then the pass's bins
+  unsigned* sh_lo = reinterpret_cast<unsigned*>(sh);
+  unsigned* sh_hi = sh_lo + kMaxBins;
   __shared__ unsigned long long shn;
   const int bits = PassBits(pass), shift = PassShift(pass), nbins = 1 << bits;
-  for (int b = threadIdx.x; b < nbins; b += kThreads) sh[b] = 0;
+  for (int b = threadIdx.x; b < nbins; b += kThreads) sh_lo[b] = sh_hi[b] = 0;
   if (threadIdx.x == 0) shn = 0;
   __syncthreads();
   const unsigned prefix = st->prefix;
   unsigned long long mine = 0;
   for (int i = blockIdx.x * kThreads + threadIdx.x; i < n; i += gridDim.x * kThreads) {
-    const unsigned long long w = weights[i];
+    unsigned k;
+    unsigned long long w;
+    if (pass == 0) {
+      make(i, &k, &w);
+      keys[i] = k;
+      weights[i] = w;
+    } else {
+      w = weights[i];
+      k = keys[i];
+    }
     if (w == 0) continue;
-    const unsigned k = keys[i];
     if (pass > 0 && (k >> (shift + bits)) != prefix) continue;
-    atomicAdd(&sh[(k >> shift) & unsigned(nbins - 1)], w);
+    const unsigned b = (k >> shift) & unsigned(nbins - 1), lo = unsigned(w);
+    const unsigned hi = unsigned(w >> 32) + (atomicAdd(&sh_lo[b], lo) > 0xffffffffu - lo ? 1u : 0u);
+    if (hi) atomicAdd(&sh_hi[b], hi);
     ++mine;
   }
   if (pass == 0 && mine) atomicAdd(&shn, mine);
   __syncthreads();
-  for (int b = threadIdx.x; b < nbins; b += kThreads)
-    if (sh[b]) atomicAdd(&bins[b], sh[b]);
+  for (int b = threadIdx.x; b < nbins; b += kThreads) {
+    const unsigned long long v = (static_cast<unsigned long long>(sh_hi[b]) << 32) + sh_lo[b];
+    if (v) atomicAdd(&bins[b], v);
+  }
   if (pass == 0 && threadIdx.x == 0 && shn) atomicAdd(&st->count, shn);
   // The last block to finish picks the bin.
   __shared__ bool last;
@@ -164,29 +182,31 @@ ExposureEstimate GpuExposureEstimator::Estimate(const ExposureArgs& a, const Pos
   return Result();
 }
 
-void GpuExposureEstimator::Queue(const ExposureArgs& a, const tracking::PoseD* T_world_live, cudaStream_t stream) {
-  const int stride = o_.stride, sw = sw_, sh = sh_;
-  unsigned* keys = keys_.data();
-  unsigned long long* weights = weights_.data();
-  const double scale = std::ldexp(1.0, WeightShift(long(sw) * sh));
-  par::ForEachPixel(par::Gpu{stream}, sw, sh, [=] __device__(int x, int y) {
-    ExposureArgs b = a;
-    b.T_live_world = tracking::ToRigid(tracking::Inverse(*T_world_live));
-    float lr = 0.f, wt = 0.f;
-    const bool valid = ExposureSample(b, stride * x, stride * y, &lr, &wt);
-    StoreSample(valid, lr, wt, scale, keys + (y * sw + x), weights + (y * sw + x));
-  });
-  QueueSelect(sw * sh, stream);
-}
-
-void GpuExposureEstimator::QueueSelect(int n, cudaStream_t stream) {
+template <typename Make>
+void GpuExposureEstimator::QueueSelect(int n, Make make, cudaStream_t stream) {
   auto* st = reinterpret_cast<SelectState*>(state_.data());
   const int blocks = std::max(1, std::min(kBlocks, (n + kThreads - 1) / kThreads));
   for (int pass = 0; pass < 3; ++pass) {
-    SelectPass<<<blocks, kThreads, 0, stream>>>(pass, n, keys_.data(), weights_.data(), bins_.data(), st, out_.data());
+    SelectPass<<<blocks, kThreads, 0, stream>>>(pass, n, make, keys_.data(), weights_.data(), bins_.data(), st,
+                                                out_.data());
     HDRF_CUDA_CHECK_LAUNCH();
   }
   HDRF_CUDA_CHECK(cudaMemcpyAsync(host_out_, out_.data(), 3 * sizeof(double), cudaMemcpyDeviceToHost, stream));
+}
+
+void GpuExposureEstimator::Queue(const ExposureArgs& a, const tracking::PoseD* T_world_live, cudaStream_t stream) {
+  const int stride = o_.stride, sw = sw_;
+  const double scale = std::ldexp(1.0, WeightShift(long(sw_) * sh_));
+  QueueSelect(
+      sw_ * sh_,
+      [=] __device__(int i, unsigned* k, unsigned long long* w) {
+        ExposureArgs b = a;
+        b.T_live_world = tracking::ToRigid(tracking::Inverse(*T_world_live));
+        float lr = 0.f, wt = 0.f;
+        const bool valid = ExposureSample(b, stride * (i % sw), stride * (i / sw), &lr, &wt);
+        StoreSample(valid, lr, wt, scale, k, w);
+      },
+      stream);
 }
 
 ExposureEstimate GpuExposureEstimator::Result() const {
@@ -213,14 +233,14 @@ ExposureEstimate GpuWeightedMedianRatio(const std::vector<std::pair<float, float
     HDRF_CUDA_CHECK(cudaMemcpy(dw.data(), w.data(), sizeof(float) * w.size(), cudaMemcpyHostToDevice));
   }
   const float *kp = dk.data(), *wp = dw.data();
-  unsigned* keys = est.keys_.data();
-  unsigned long long* weights = est.weights_.data();
   const double scale = std::ldexp(1.0, WeightShift(n));
   const int count = int(samples.size());
-  par::ForEach(par::Gpu{}, n, [=] __device__(int i) {
-    StoreSample(i < count, i < count ? kp[i] : 0.f, i < count ? wp[i] : 0.f, scale, keys + i, weights + i);
-  });
-  est.QueueSelect(n, nullptr);
+  est.QueueSelect(
+      n,
+      [=] __device__(int i, unsigned* key, unsigned long long* weight) {
+        StoreSample(i < count, i < count ? kp[i] : 0.f, i < count ? wp[i] : 0.f, scale, key, weight);
+      },
+      nullptr);
   HDRF_CUDA_CHECK(cudaStreamSynchronize(nullptr));
   return est.Result();
 }

@@ -40,8 +40,10 @@ class GpuExposureEstimator {
 
  private:
   friend ExposureEstimate GpuWeightedMedianRatio(const std::vector<std::pair<float, float>>&, int);
-  // The selection over the first n samples in keys_ and weights_, queued on `stream`.
-  void QueueSelect(int n, cudaStream_t stream);
+  // The selection over n samples, queued on `stream`: make(i, &key, &weight) makes sample i
+  // (exposure_cuda.cu; weight 0: none), and the first pass stores it in keys_ and weights_.
+  template <typename Make>
+  void QueueSelect(int n, Make make, cudaStream_t stream);
   ExposureOptions o_;
   int sw_ = 0, sh_ = 0;  // the sample grid (every stride-th pixel)
   DeviceBuffer<unsigned> keys_;                  // each sample's key, as ordered bits
