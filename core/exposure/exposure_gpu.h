@@ -48,8 +48,8 @@ class GpuExposureEstimator {
   int sw_ = 0, sh_ = 0;  // the sample grid (every stride-th pixel)
   DeviceBuffer<unsigned> keys_;                  // each sample's key, as ordered bits
   DeviceBuffer<unsigned long long> weights_;     // its weight in fixed point; 0: no sample
-  DeviceBuffer<unsigned long long> bins_;        // a pass's bins (zero between passes)
-  DeviceBuffer<std::uint8_t> state_;             // the selection's state (exposure_cuda.cu)
+  DeviceBuffer<unsigned long long> bins_;        // each pass's bins (zero between selections)
+  DeviceBuffer<std::uint8_t> state_;             // the samples' count (zero between selections)
   DeviceBuffer<double> out_;                     // (count, ratio, log ratio)
   DeviceBuffer<tracking::PoseD> pose_;  // Estimate's pose, on the device
   tracking::PoseD* host_pose_ = nullptr;  // pinned
