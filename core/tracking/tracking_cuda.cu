@@ -161,10 +161,11 @@ struct GraphShape {
 
 struct GpuNormalEquations::Impl {
   par::Reducer reducer{GnSystem::kSize};
+  par::Reducer count_reducer{2};  // the valid pixels' counts, beside the levels' sums
   DeviceBuffer<DeviceTrack> track{1};
   DeviceTrack* host = nullptr;  // pinned: the frame's parameters out, the run's state back
-  cudaStream_t stream = nullptr, body_stream = nullptr;
-  cudaEvent_t ready = nullptr;
+  cudaStream_t stream = nullptr, body_stream = nullptr, count_stream = nullptr;
+  cudaEvent_t ready = nullptr, fork = nullptr, join = nullptr;
   cudaGraphExec_t graph = nullptr;
   GraphShape shape;
   Valid valid;
@@ -172,11 +173,17 @@ struct GpuNormalEquations::Impl {
     HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceTrack)));
     HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
     HDRF_CUDA_CHECK(cudaStreamCreate(&body_stream));
+    HDRF_CUDA_CHECK(cudaStreamCreate(&count_stream));
     HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
+    HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&fork, cudaEventDisableTiming));
+    HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&join, cudaEventDisableTiming));
   }
   ~Impl() {
     if (graph) cudaGraphExecDestroy(graph);
+    cudaEventDestroy(join);
+    cudaEventDestroy(fork);
     cudaEventDestroy(ready);
+    cudaStreamDestroy(count_stream);
     cudaStreamDestroy(body_stream);
     cudaStreamDestroy(stream);
     cudaFreeHost(host);
@@ -189,18 +196,32 @@ struct GpuNormalEquations::Impl {
 // from the host and runs no more sums than the steps take; it is captured again only when
 // its shape changes (levels, iteration caps, sizes, terms).
 namespace {
-cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* host, cudaStream_t stream,
-                           cudaStream_t body_stream, const GraphShape& g) {
+// What a capture uses: the sums' reducers, the run's state, the streams and events.
+struct CaptureParts {
+  par::Reducer &reducer, &count_reducer;
+  DeviceTrack *d, *host;
+  cudaStream_t stream, body_stream, count_stream;
+  cudaEvent_t fork, join;
+};
+cudaGraphExec_t CaptureRun(const CaptureParts& m, const GraphShape& g) {
+  par::Reducer& reducer = m.reducer;
+  DeviceTrack* d = m.d;
+  DeviceTrack* host = m.host;
+  const cudaStream_t stream = m.stream, body_stream = m.body_stream;
   constexpr cudaStreamCaptureMode kMode = cudaStreamCaptureModeThreadLocal;
   HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, kMode));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&d->frame, &host->frame, sizeof(FrameParams), cudaMemcpyHostToDevice, stream));
   StartRun<<<1, 1, 0, stream>>>(d);
   const DeviceTrack* rd = d;
-  // The finest level's valid pixels (the tracking's judge weighs the matches against them).
-  reducer.SumOnDevice<Count2>(
+  // The finest level's valid pixels (the tracking's judge weighs the matches against them),
+  // on a branch of their own beside the levels, joined before the read-back.
+  HDRF_CUDA_CHECK(cudaEventRecord(m.fork, stream));
+  HDRF_CUDA_CHECK(cudaStreamWaitEvent(m.count_stream, m.fork, 0));
+  m.count_reducer.SumOnDevice<Count2>(
       g.width[0], g.height[0], [=] __device__(int x, int y, Count2& acc) { CountValid(rd->frame.icp[0], x, y, acc); },
-      stream);
-  KeepValid<<<1, 1, 0, stream>>>(d, reducer.device_sums());
+      m.count_stream);
+  KeepValid<<<1, 1, 0, m.count_stream>>>(d, m.count_reducer.device_sums());
+  HDRF_CUDA_CHECK(cudaEventRecord(m.join, m.count_stream));
   const bool use_icp = g.icp, use_photo = g.photo;
   for (int l = g.levels - 1; l >= 0; --l) {
     const int iters = g.iterations[std::size_t(g.levels - 1 - l)];
@@ -234,6 +255,7 @@ cudaGraphExec_t CaptureRun(par::Reducer& reducer, DeviceTrack* d, DeviceTrack* h
     cudaGraph_t body = nullptr;
     HDRF_CUDA_CHECK(cudaStreamEndCapture(body_stream, &body));
   }
+  HDRF_CUDA_CHECK(cudaStreamWaitEvent(stream, m.join, 0));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&host->run, &d->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, stream));
   cudaGraph_t whole = nullptr;
   HDRF_CUDA_CHECK(cudaStreamEndCapture(stream, &whole));
@@ -291,7 +313,9 @@ void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& 
   if (!m.graph || !(g == m.shape)) {
     if (m.graph) HDRF_CUDA_CHECK(cudaGraphExecDestroy(m.graph));
     m.graph = nullptr;
-    m.graph = CaptureRun(m.reducer, m.track.data(), m.host, m.stream, m.body_stream, g);
+    m.graph = CaptureRun({m.reducer, m.count_reducer, m.track.data(), m.host, m.stream, m.body_stream, m.count_stream,
+                          m.fork, m.join},
+                         g);
     m.shape = g;
   }
   // After whatever the default stream has queued (the live pyramid, the reference).
