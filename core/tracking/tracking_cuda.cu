@@ -165,7 +165,7 @@ struct GpuNormalEquations::Impl {
   DeviceBuffer<DeviceTrack> track{1};
   DeviceTrack* host = nullptr;  // pinned: the frame's parameters out, the run's state back
   cudaStream_t stream = nullptr, body_stream = nullptr, count_stream = nullptr;
-  cudaEvent_t ready = nullptr, fork = nullptr, join = nullptr;
+  cudaEvent_t fork = nullptr, join = nullptr;
   cudaGraphExec_t graph = nullptr;
   GraphShape shape;
   Valid valid;
@@ -174,7 +174,6 @@ struct GpuNormalEquations::Impl {
     HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
     HDRF_CUDA_CHECK(cudaStreamCreate(&body_stream));
     HDRF_CUDA_CHECK(cudaStreamCreate(&count_stream));
-    HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
     HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&fork, cudaEventDisableTiming));
     HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&join, cudaEventDisableTiming));
   }
@@ -182,7 +181,6 @@ struct GpuNormalEquations::Impl {
     if (graph) cudaGraphExecDestroy(graph);
     cudaEventDestroy(join);
     cudaEventDestroy(fork);
-    cudaEventDestroy(ready);
     cudaStreamDestroy(count_stream);
     cudaStreamDestroy(body_stream);
     cudaStreamDestroy(stream);
@@ -289,7 +287,7 @@ GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels,
   return FinishRun();
 }
 
-cudaStream_t GpuNormalEquations::stream() const { return impl_->stream; }
+cudaStream_t GpuNormalEquations::stream() const { return nullptr; }
 const PoseD* GpuNormalEquations::device_pose() const { return &impl_->track.data()->run.T; }
 
 void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
@@ -318,15 +316,14 @@ void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& 
                          g);
     m.shape = g;
   }
-  // After whatever the default stream has queued (the live pyramid, the reference).
-  HDRF_CUDA_CHECK(cudaEventRecord(m.ready, 0));
-  HDRF_CUDA_CHECK(cudaStreamWaitEvent(m.stream, m.ready, 0));
-  HDRF_CUDA_CHECK(cudaGraphLaunch(m.graph, m.stream));
+  // On the default stream, after whatever it has queued (the live pyramid, the reference):
+  // no event between streams to wait on.
+  HDRF_CUDA_CHECK(cudaGraphLaunch(m.graph, nullptr));
 }
 
 GaussNewtonRun GpuNormalEquations::FinishRun() {
   Impl& m = *impl_;
-  HDRF_CUDA_CHECK(cudaStreamSynchronize(m.stream));
+  HDRF_CUDA_CHECK(cudaStreamSynchronize(nullptr));
   const DeviceRun& r = m.host->run;
   GaussNewtonRun run;
   run.T_world_camera = FromPoseD(r.T);

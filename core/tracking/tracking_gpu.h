@@ -36,9 +36,9 @@ class GpuNormalEquations {
   };
   GaussNewtonRun RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
                              const TrackerOptions& o, const MotionPrior* prior);
-  // RunOnDevice in two halves: the run queued (after the default stream's work) on the
-  // tracker's stream, where more may be queued behind it (at the pose it leaves in device
-  // memory); then waited for and read back.
+  // RunOnDevice in two halves: the run queued on the default stream (after its work), where
+  // more may be queued behind it (at the pose it leaves in device memory: stream()); then
+  // waited for and read back.
   void QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
                 const TrackerOptions& o, const MotionPrior* prior);
   GaussNewtonRun FinishRun();
