@@ -264,7 +264,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
 }
 
 void MainWindow::OpenProject(const QString& path) {
-  error_->hide();
+  HideError();
   latest_.reset();
   shown_.reset();
   QMetaObject::invokeMethod(worker_, [w = worker_, path] { w->OpenProject(path); }, Qt::QueuedConnection);
@@ -468,6 +468,7 @@ void MainWindow::BuildStatus() {
   error_->setObjectName("error");
   error_->setWordWrap(true);
   error_->setStyleSheet("QLabel { color: white; background: #a02020; padding: 4px; }");
+  error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   error_->hide();
   // Stage times as a grid of plain labels made once (a rich-text table re-laid out its whole
   // document on every frame): names left, times right-aligned, two column pairs.
@@ -555,7 +556,7 @@ void MainWindow::ConnectSensors() {
   });
   connect(worker_, &ScanWorker::cameraBack, this, [this](const QString& msg) {
     camera_lost_ = false;
-    error_->hide();
+    HideError();
     error_->clear();
     start_->setText(tr("Start"));
     statusBar()->showMessage(msg, 15000);
@@ -723,7 +724,7 @@ ScanSettings MainWindow::CurrentSettings() const {
 }
 
 void MainWindow::ApplyEngineSettings() {
-  error_->hide();
+  HideError();
   try {
     emit configure(CurrentSettings());
     tone_->SetDevice(engine_->Value("device") == "cuda" ? Device::kCuda : Device::kCpu);
@@ -734,7 +735,7 @@ void MainWindow::ApplyEngineSettings() {
 }
 
 void MainWindow::StartScan() {
-  error_->hide();
+  HideError();
   emit start();
 }
 void MainWindow::PauseScan() { emit pause(); }
@@ -764,9 +765,25 @@ void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
   }
 }
 
-void MainWindow::OnFailed(const QString& message) {
+// An error takes the place of the stage times and the memory line in the status panel while
+// it is shown: the panel keeps the height of its usual content, and a message of three lines
+// or more beside them was cut off at both ends (1366x768). The whole message is also the
+// label's tooltip and in the status bar, and can be selected and copied.
+void MainWindow::ShowError(const QString& message) {
   error_->setText(message);
+  error_->setToolTip(message);
   error_->show();
+  stages_->hide();
+  memory_->hide();
+}
+void MainWindow::HideError() {
+  error_->hide();
+  stages_->show();
+  memory_->show();
+}
+
+void MainWindow::OnFailed(const QString& message) {
+  ShowError(message);
   docks_["status"]->show();
   statusBar()->showMessage(message);
   if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
@@ -1094,6 +1111,13 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   report["cpu_seconds_by_thread"] = CpuSecondsByThread();
   report["health"] = health_->text();
   report["error"] = error_->text();
+  // The error shown whole: its label as tall as its text needs at its width, and inside the
+  // status panel.
+  if (error_->isVisible()) {
+    const QRect in_panel(error_->mapTo(docks_["status"], QPoint(0, 0)), error_->size());
+    report["error_fits"] = error_->height() >= error_->heightForWidth(error_->width()) &&
+                           docks_["status"]->rect().contains(in_panel);
+  }
   report["window"] = QJsonArray{shot.width(), shot.height()};
   if (const QScreen* screen = QGuiApplication::primaryScreen())
     report["screen"] = QJsonArray{screen->availableGeometry().width(), screen->availableGeometry().height()};

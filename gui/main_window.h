@@ -127,6 +127,8 @@ class MainWindow : public QMainWindow {
   void RenderStatus(const std::shared_ptr<const Snapshot>& s);    // its status panel
   static QString StatusKey(const Snapshot& s);                   // what the panel shows at once
   void OnFailed(const QString& message);
+  void ShowError(const QString& message);  // in the status panel, in place of the stage times
+  void HideError();
   void ApplyEngineSettings();
   void FinishScripted();
   void OfferRecovery();

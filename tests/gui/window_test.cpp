@@ -495,6 +495,27 @@ TEST(StudioProgram, FitsLaptopAndDesktopScreensWithEveryViewLegible) {
   }
 }
 
+// An error of three lines or more (a long folder name) is shown whole in the status panel at
+// 1366x768, in place of the stage times: beside them it was cut off at both ends.
+TEST(StudioProgram, ALongErrorIsShownWholeOnALaptopScreen) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  QTemporaryDir dir;
+  const QString shot = dir.filePath("studio.png");
+  const std::string folder = "/nonexistent/customer-site-42/living-room-with-large-windows-and-a-glass-door-facing-"
+                             "south/recording-2026-11-27-afternoon-session-after-the-calibration";
+  const auto r = test::RunCommand("XDG_CONFIG_HOME=" + dir.path().toStdString() + " XDG_STATE_HOME=" +
+                                  dir.path().toStdString() + " xvfb-run -a -s '-screen 0 1366x768x24' " HDRF_STUDIO_BINARY
+                                  " --no-recovery-offer --source " + folder + " --frames 5 --screenshot " +
+                                  shot.toStdString() + " 2>&1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  QFile f(shot + ".json");
+  ASSERT_TRUE(f.open(QIODevice::ReadOnly));
+  const QJsonObject j = QJsonDocument::fromJson(f.readAll()).object();
+  EXPECT_TRUE(j["error"].toString().contains(QString::fromStdString(folder))) << j["error"].toString().toStdString();
+  ASSERT_TRUE(j.contains("error_fits")) << "no error shown";
+  EXPECT_TRUE(j["error_fits"].toBool());
+}
+
 TEST(StudioProgram, WithoutADisplayItSaysSo) {
   const auto r = test::RunCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " HDRF_STUDIO_BINARY " 2>&1");
   EXPECT_EQ(r.status, 3);
