@@ -53,8 +53,8 @@ __global__ void __launch_bounds__(kThreads)
   unsigned* sh_lo = reinterpret_cast<unsigned*>(sh);
   unsigned* sh_hi = sh_lo + kMaxBins;
   __shared__ unsigned long long scan[kThreads];
-  __shared__ unsigned long long shn, total, below;
-  __shared__ unsigned prefix;
+  __shared__ unsigned long long total, below;
+  __shared__ unsigned shn, prefix;  // (32 bits: a 64-bit atomic in shared memory is a loop of compare-and-swaps)
   if (threadIdx.x == 0) shn = 0, total = 0, below = 0, prefix = 0;
   for (int pass = 0; pass < 3; ++pass) {
     const int bits = PassBits(pass), shift = PassShift(pass), nbins = 1 << bits;
@@ -62,7 +62,7 @@ __global__ void __launch_bounds__(kThreads)
     for (int b = threadIdx.x; b < nbins; b += kThreads) sh_lo[b] = sh_hi[b] = 0;
     __syncthreads();
     const unsigned want = prefix;
-    unsigned long long mine = 0;
+    unsigned mine = 0;
     for (int i = blockIdx.x * kThreads + threadIdx.x; i < n; i += gridDim.x * kThreads) {
       unsigned k;
       unsigned long long w;
@@ -81,13 +81,16 @@ __global__ void __launch_bounds__(kThreads)
       if (hi) atomicAdd(&sh_hi[b], hi);
       ++mine;
     }
-    if (pass == 0 && mine) atomicAdd(&shn, mine);
+    if (pass == 0) {  // the block's samples: a warp's sum, then one atomic a warp
+      for (int off = 16; off > 0; off >>= 1) mine += __shfl_down_sync(0xffffffffu, mine, off);
+      if (threadIdx.x % 32 == 0 && mine) atomicAdd(&shn, mine);
+    }
     __syncthreads();
     for (int b = threadIdx.x; b < nbins; b += kThreads) {
       const unsigned long long v = (static_cast<unsigned long long>(sh_hi[b]) << 32) + sh_lo[b];
       if (v) atomicAdd(&pass_bins[b], v);
     }
-    if (pass == 0 && threadIdx.x == 0 && shn) atomicAdd(count, shn);
+    if (pass == 0 && threadIdx.x == 0 && shn) atomicAdd(count, static_cast<unsigned long long>(shn));
     grid.sync();
     // Every block picks: each thread's run of bins, its sum, the sums of the runs before it.
     const int per = nbins / kThreads;  // 8 or 4
