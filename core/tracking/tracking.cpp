@@ -70,57 +70,35 @@ namespace {
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
-// Sums a per-pixel term over a w x h grid on the CPU threads: the rows are cut into fixed
+// Sums per-pixel terms over a w x h grid on the CPU threads: the rows are cut into fixed
 // chunks of kChunkRows, each chunk summed on its own (by whichever thread is free: a thread
 // slowed by other work, the studio's window among them, no longer holds the others at the
 // end), and the chunks' sums are added in chunk order, so the result is the same on every
 // run whatever the number of threads. Each chunk sums on the stack (sums side by side in
 // one array shared cache lines: every pixel's update moved a line between the cores) and
-// stores its sum once.
-template <typename Term>
-void SumTerms(int w, int h, const Term& term, GnSystem& acc) {
-  constexpr int kChunkRows = 4;
+// stores its sum once. With several terms (ICP and photometric, on one grid) each chunk
+// sums each term on its own, in one parallel pass (a chunk's rows read once while in
+// cache), and all of the first term's chunks are added before the second's: the same bits
+// as summing the terms one after another.
+template <typename... Terms>
+void SumTerms(int w, int h, GnSystem& acc, const Terms&... terms) {
+  constexpr int kChunkRows = 4, kTerms = int(sizeof...(Terms));
   const int chunks = (h + kChunkRows - 1) / kChunkRows;
-  std::vector<GnSystem> partial(static_cast<std::size_t>(chunks));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int c = 0; c < chunks; ++c) {
-    GnSystem local;
-    {
-      TermBatch batch(local);
-      for (int y = c * kChunkRows; y < std::min(h, (c + 1) * kChunkRows); ++y)
-        for (int x = 0; x < w; ++x) term(x, y, batch);
-    }
-    partial[std::size_t(c)] = local;
-  }
-  for (const GnSystem& p : partial) acc.Merge(p);
-}
-
-// SumTerms of `first`, then of `second`, over the same grid in one pass: each chunk sums the
-// two terms on their own, and the first's sums are added in chunk order before the
-// second's, so the result is SumTerms(first) then SumTerms(second), bit for bit (one
-// parallel region instead of two; a chunk's rows read once while in cache).
-template <typename First, typename Second>
-void SumTermsInOnePass(int w, int h, const First& first, const Second& second, GnSystem& acc) {
-  constexpr int kChunkRows = 4;
-  const int chunks = (h + kChunkRows - 1) / kChunkRows;
-  std::vector<GnSystem> partial(2 * static_cast<std::size_t>(chunks));
+  std::vector<GnSystem> partial(std::size_t(kTerms) * static_cast<std::size_t>(chunks));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int c = 0; c < chunks; ++c) {
     const int y0 = c * kChunkRows, y1 = std::min(h, (c + 1) * kChunkRows);
-    GnSystem a;
-    {
-      TermBatch batch(a);
-      for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; ++x) first(x, y, batch);
-    }
-    GnSystem b;
-    {
-      TermBatch batch(b);
-      for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; ++x) second(x, y, batch);
-    }
-    partial[std::size_t(c)] = a;
-    partial[std::size_t(chunks + c)] = b;
+    int k = 0;
+    auto sum = [&](const auto& term) {
+      GnSystem local;
+      {
+        TermBatch batch(local);
+        for (int y = y0; y < y1; ++y)
+          for (int x = 0; x < w; ++x) term(x, y, batch);
+      }
+      partial[std::size_t(k++) * std::size_t(chunks) + std::size_t(c)] = local;
+    };
+    (sum(terms), ...);
   }
   for (const GnSystem& p : partial) acc.Merge(p);
 }
@@ -178,11 +156,11 @@ GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const 
   const auto photo = [&, a = use_photo ? MakePhotoArgs(ref, live, T_world_live, o) : PhotoArgs{}](
                          int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); };
   if (use_icp && use_photo && live.cam.width == ref.cam.width && live.cam.height == ref.cam.height) {
-    SumTermsInOnePass(live.cam.width, live.cam.height, icp, photo, acc);
+    SumTerms(live.cam.width, live.cam.height, acc, icp, photo);
     return acc;
   }
-  if (use_icp) SumTerms(live.cam.width, live.cam.height, icp, acc);
-  if (use_photo) SumTerms(ref.cam.width, ref.cam.height, photo, acc);
+  if (use_icp) SumTerms(live.cam.width, live.cam.height, acc, icp);
+  if (use_photo) SumTerms(ref.cam.width, ref.cam.height, acc, photo);
   return acc;
 }
 
