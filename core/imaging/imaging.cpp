@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <vector>
 #include <cmath>
 
@@ -53,6 +54,57 @@ BilateralTables MakeBilateralTables(float ss, float sd, int r) {
     t.range[i] = i == kBilateralBins ? 0.f : std::exp(-dz * dz / (2 * sd * sd));
   }
   return t;
+}
+
+namespace {
+
+using Lanes = float __attribute__((vector_size(4 * sizeof(float))));
+using LaneInts = int __attribute__((vector_size(4 * sizeof(int))));
+
+// BilateralPixel for pixels x .. x + 3 of row y, whose windows lie inside the image: each
+// lane adds its pixel's taps in the same order with the same operations. A tap that
+// BilateralPixel skips (no depth) adds +0 to sums that are +0 or more: no bit changes.
+void BilateralFour(ImageView<const float> d, const BilateralTables& t, int x, int y, float* out) {
+  const int r = t.radius, side = 2 * r + 1;
+  Lanes c;
+  std::memcpy(&c, &d(x, y), sizeof c);
+  const Lanes zero = {0.f, 0.f, 0.f, 0.f}, top = zero + float(kBilateralBins), huge = zero + 3.0e38f;
+  const Lanes to_bin = zero + t.to_bin;
+  const LaneInts sign = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
+  Lanes sw = zero, sv = zero;
+  for (int dy = -r; dy <= r; ++dy) {
+    const float* row = &d(x - r, y + dy);
+    const int k0 = (dy + r) * side;
+    for (int i = 0; i < side; ++i) {
+      Lanes v;
+      std::memcpy(&v, row + i, sizeof v);
+      const LaneInts valid = (v > zero) & (v <= huge);
+      const Lanes fb = (Lanes)((LaneInts)(v - c) & sign) * to_bin;  // |v - c| * to_bin
+      // fb < bins ? int(fb) : bins, where a tap without depth (fb may be NaN) takes the last bin.
+      const LaneInts bin = __builtin_convertvector(valid ? (fb < top ? fb : top) : top, LaneInts);
+      const float spatial = t.spatial[k0 + i];
+      const Lanes range = {t.range[bin[0]], t.range[bin[1]], t.range[bin[2]], t.range[bin[3]]};
+      const Lanes wgt = valid ? spatial * range : zero;
+      sw += wgt;
+      sv += valid ? wgt * v : zero;
+    }
+  }
+  for (int k = 0; k < 4; ++k) out[k] = c[k] > 0.f && c[k] <= 3.0e38f ? sv[k] / sw[k] : 0.f;
+}
+
+}  // namespace
+
+void BilateralFilter(par::Host, ImageView<const float> depth_m, const BilateralTables& t, ImageView<float> out) {
+  const int w = depth_m.width, h = depth_m.height, r = t.radius;
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int y = 0; y < h; ++y) {
+    int x = 0;
+    if (y >= r && y + r < h) {
+      for (; x < r; ++x) out(x, y) = BilateralPixel(depth_m, t, x, y);
+      for (; x + 3 + r < w; x += 4) BilateralFour(depth_m, t, x, y, &out(x, y));
+    }
+    for (; x < w; ++x) out(x, y) = BilateralPixel(depth_m, t, x, y);
+  }
 }
 
 DepthImage BilateralDepth(const DepthImage& d, float ss, float sd, int r) {

@@ -9,12 +9,10 @@
 
 namespace hdrf::imaging {
 
-template <typename Device>
-void BilateralFilter(Device d, ImageView<const float> depth_m, const BilateralTables& t, ImageView<float> out) {
-  const BilateralTables tables = t;
-  par::ForEachPixel(d, depth_m.width, depth_m.height,
-                    HDRF_LAMBDA(int x, int y) { out(x, y) = BilateralPixel(depth_m, tables, x, y); });
-}
+// The CPU's filter (imaging.cpp): BilateralPixel per pixel, four neighbours of a row at once
+// where their windows lie inside the image (each pixel's taps in BilateralPixel's order, one
+// pixel a lane: the same bits). The GPU's is BilateralFilterOnGpu.
+void BilateralFilter(par::Host, ImageView<const float> depth_m, const BilateralTables& t, ImageView<float> out);
 
 // The delivered colour as grey in [0, 1], each pixel weighted 1.
 template <typename Device>

@@ -98,16 +98,18 @@ TEST(ImagingSteps, VerticesNormalsAndDepthPyramid) {
   EXPECT_EQ(DownsampleDepthPixel(View(p), 0, 0), 0.f);  // no data at the sample stays none
 }
 
-// The CPU's way for pixels whose window lies inside the image (rows read without border
-// checks) gives the bits of the border-checked taps, written out here as the GPU takes
-// them, on a sensor frame with holes, edges and invalid depths, for each radius.
+// The CPU's ways for pixels whose window lies inside the image (rows read without border
+// checks, four pixels of a row at once) give the bits of the border-checked taps, written
+// out here as the GPU takes them, on a sensor frame with holes, edges and invalid depths
+// (none, negative, not finite, beyond the float range the filter takes), for each radius.
 TEST(Imaging, BilateralFilterInsideTheImageGivesTheBorderCheckedBits) {
   const auto frames = Frames(1, sim::AeMode::kFixed);
   DepthImage d = Metres(frames[0].depth);
   std::uint32_t h = 99;
   for (int k = 0; k < 2000; ++k) {  // holes and non-finite depths scattered through
     h = h * 1664525u + 1013904223u;
-    d[std::size_t(h >> 8) % d.size()] = k % 3 == 0 ? std::numeric_limits<float>::quiet_NaN() : 0.f;
+    const float odd[5] = {std::numeric_limits<float>::quiet_NaN(), 0.f, std::numeric_limits<float>::infinity(), -1.f, 3.2e38f};
+    d[std::size_t(h >> 8) % d.size()] = odd[k % 5];
   }
   long differ = 0, inside = 0;
   for (int r : {1, 3, 5}) {

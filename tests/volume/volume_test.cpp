@@ -108,21 +108,24 @@ TEST(Volume, RaysStartedNearTheFusedDepthFindTheSameSurface) {
     vol.Integrate(in);
   }
   const Pose T = T0inv * frames.back().T_world_camera;
-  Image<float> guide(volume::GuideTiles(320), volume::GuideTiles(240));
-  ASSERT_EQ(guide.width(), 40);
-  ASSERT_EQ(guide.height(), 30);
+  constexpr int kT = volume::kGuideTile;
+  const int tw = volume::GuideTiles(320), th = volume::GuideTiles(240);
+  Image<float> guide(tw, th);
+  ASSERT_EQ(tw, (320 + kT - 1) / kT);
+  ASSERT_EQ(th, (240 + kT - 1) / kT);
   volume::RaycastGuide(par::Host{}, View(last_depth), vo.truncation_m(), View(guide));
   int guided_tiles = 0;
-  for (int ty = 0; ty < 30; ++ty)
-    for (int tx = 0; tx < 40; ++tx) {
+  for (int ty = 0; ty < th; ++ty)
+    for (int tx = 0; tx < tw; ++tx) {
       float lo = 1e9f;
       bool all = true;
-      for (int y = 8 * ty; y < 8 * ty + 8; ++y)
-        for (int x = 8 * tx; x < 8 * tx + 8; ++x) all = all && last_depth(x, y) > 0, lo = std::min(lo, last_depth(x, y));
+      for (int y = kT * ty; y < std::min(240, kT * ty + kT); ++y)
+        for (int x = kT * tx; x < std::min(320, kT * tx + kT); ++x)
+          all = all && last_depth(x, y) > 0, lo = std::min(lo, last_depth(x, y));
       EXPECT_FLOAT_EQ(guide(tx, ty), all ? lo - vo.truncation_m() : 0.f) << tx << " " << ty;
       guided_tiles += guide(tx, ty) > 0;
     }
-  EXPECT_GT(guided_tiles, 30 * 40 / 2);
+  EXPECT_GT(guided_tiles, tw * th / 2);
   const auto from_near = vol.Raycast(cam, T);
   const auto guided = vol.Raycast(cam, T, &guide);
   long both = 0, only_near = 0, only_guided = 0, close = 0, within = 0;
@@ -139,9 +142,9 @@ TEST(Volume, RaysStartedNearTheFusedDepthFindTheSameSurface) {
       close += d < 0.05 * vo.voxel_m;
       within += d < 0.25 * vo.voxel_m;
     }
-  std::printf("guided ray cast: %d of 1200 tiles guided; %ld pixels hit by both, %ld only from near, %ld only guided; "
+  std::printf("guided ray cast: %d of %d tiles guided; %ld pixels hit by both, %ld only from near, %ld only guided; "
               "%.2f %% within 1 mm, %.2f %% within 5 mm, largest difference %.2f mm\n",
-              guided_tiles, both, only_near, only_guided, 100.0 * double(close) / double(both),
+              guided_tiles, tw * th, both, only_near, only_guided, 100.0 * double(close) / double(both),
               100.0 * double(within) / double(both), 1e3 * worst);
   EXPECT_GT(both, 55000);
   EXPECT_LE(only_near + only_guided, both / 500);
@@ -157,13 +160,28 @@ TEST(Volume, RaysStartedNearTheFusedDepthFindTheSameSurface) {
   long deeper = 0, in_guided = 0;
   for (int y = 0; y < 240; ++y)
     for (int x = 0; x < 320; ++x)
-      if (far_guide(x / 8, y / 8) > 0 && from_near.depth(x, y) > 0) {
+      if (far_guide(x / kT, y / kT) > 0 && from_near.depth(x, y) > 0) {
         ++in_guided;
         deeper += !(skipped.depth(x, y) > 0) || skipped.depth(x, y) > from_near.depth(x, y) + 0.2f;
       }
   // The guide decides where rays begin: it must come from the depth fused at that pose.
   EXPECT_GT(in_guided, 30000);
   EXPECT_GE(double(deeper), 0.95 * double(in_guided));
+  // A guide 4 cm behind the surface (half the truncation; noisy depth): the first sample of
+  // such a ray is behind the model's surface, and the ray starts again from near.
+  Image<float> behind = guide.Clone();
+  for (std::size_t i = 0; i < behind.size(); ++i) behind[i] = behind[i] > 0 ? behind[i] + vo.truncation_m() + 0.04f : 0.f;
+  const auto restarted = vol.Raycast(cam, T, &behind);
+  long same = 0, tried = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x)
+      if (behind(x / kT, y / kT) > 0 && from_near.depth(x, y) > 0) {
+        ++tried;
+        same += std::abs(restarted.depth(x, y) - from_near.depth(x, y)) < 0.25f * vo.voxel_m;
+      }
+  std::printf("guide 4 cm behind the surface: %ld of %ld rays found the surface found from near\n", same, tried);
+  EXPECT_GT(tried, 30000);
+  EXPECT_GE(double(same), 0.97 * double(tried));
 }
 
 // A volume with the frames fused at their true poses (relative to the first).
