@@ -47,10 +47,6 @@ struct UploadPart {
   std::size_t bytes;
 };
 void UploadThroughStaging(const UploadPart* parts, int count);
-inline void UploadThroughStaging(void* dst, void* staging, const void* src, std::size_t bytes) {
-  const UploadPart part{dst, staging, src, bytes};
-  UploadThroughStaging(&part, 1);
-}
 void Synchronize();
 }  // namespace cuda
 

@@ -414,28 +414,14 @@ Project LoadProject(const fs::path& file) {
       const auto wh = r.at("raycast_guide").get<std::vector<int>>();
       const Chunk& gc = Need(file, chunks, "RCGD", "the ray cast's start guide");
       const int w = p.sensor.camera.width, h = p.sensor.camera.height;
-      // Projects saved before 2026-11-28 hold a guide per tile of 8 x 8 pixels: each of its
-      // values is a start for every pixel of its tile (no surface of the tile lies nearer).
-      constexpr int kOldTile = 8;
-      const auto tiles = [](int pixels, int tile) { return (pixels + tile - 1) / tile; };
-      const bool old = wh.size() == 2 && volume::kGuideTile != kOldTile && wh[0] == tiles(w, kOldTile) &&
-                       wh[1] == tiles(h, kOldTile);
-      if (wh.size() != 2 || ((wh[0] != volume::GuideTiles(w) || wh[1] != volume::GuideTiles(h)) && !old) ||
+      if (wh.size() != 2 || wh[0] != volume::GuideTiles(w) || wh[1] != volume::GuideTiles(h) ||
           gc.data.size() != std::size_t(wh[0]) * std::size_t(wh[1]) * sizeof(float))
         throw InputError(file, "the ray cast's start guide does not fit the camera's size");
-      Image<float> stored(wh[0], wh[1]);
-      std::memcpy(stored.data(), gc.data.data(), gc.data.size());
-      for (std::size_t i = 0; i < stored.size(); ++i)
-        if (!(stored[i] >= 0.f && stored[i] < 1e6f))
+      p.resume.raycast_guide = Image<float>(wh[0], wh[1]);
+      std::memcpy(p.resume.raycast_guide.data(), gc.data.data(), gc.data.size());
+      for (std::size_t i = 0; i < p.resume.raycast_guide.size(); ++i)
+        if (!(p.resume.raycast_guide[i] >= 0.f && p.resume.raycast_guide[i] < 1e6f))
           throw InputError(file, "the ray cast's start guide holds a depth out of range");
-      if (old) {
-        p.resume.raycast_guide = Image<float>(volume::GuideTiles(w), volume::GuideTiles(h));
-        for (int y = 0; y < p.resume.raycast_guide.height(); ++y)
-          for (int x = 0; x < p.resume.raycast_guide.width(); ++x)
-            p.resume.raycast_guide(x, y) = stored(x * volume::kGuideTile / kOldTile, y * volume::kGuideTile / kOldTile);
-      } else {
-        p.resume.raycast_guide = std::move(stored);
-      }
     }
     if (r.at("reference_frame").get<bool>()) {
       const Chunk& rc = Need(file, chunks, "REFC", "the reference frame's colour");

@@ -16,13 +16,14 @@ constexpr int kRowAhead = 16;
 __global__ void RowPassKernel(ImageView<const float> cells, NrIntegrals in) {
   extern __shared__ double smem[];
   const int sw = cells.width, y = blockIdx.x;
-  double* sums[3] = {smem, smem + (sw + 1), smem + 2 * (sw + 1)};  // count, values, squares
+  // count, values, squares side by side (each thread's row computed from smem, not taken from
+  // a local array, so that its stores stay shared-memory stores)
   float* m = reinterpret_cast<float*>(smem + 3 * (sw + 1));
   for (int x = threadIdx.x; x < sw; x += blockDim.x) m[x] = cells(x, y);
   __syncthreads();
   if (threadIdx.x < 3) {
     const int which = threadIdx.x;
-    double* out = sums[which];
+    double* out = smem + which * (sw + 1);
     double acc = 0;
     out[0] = 0;
     for (int x0 = 0; x0 < sw; x0 += kRowAhead) {
@@ -41,9 +42,9 @@ __global__ void RowPassKernel(ImageView<const float> cells, NrIntegrals in) {
   }
   __syncthreads();
   for (int x = threadIdx.x; x <= sw; x += blockDim.x) {
-    in.cnt(x, y + 1) = sums[0][x];
-    in.s1(x, y + 1) = sums[1][x];
-    in.s2(x, y + 1) = sums[2][x];
+    in.cnt(x, y + 1) = smem[x];
+    in.s1(x, y + 1) = smem[(sw + 1) + x];
+    in.s2(x, y + 1) = smem[2 * (sw + 1) + x];
   }
 }
 // The column pass (NrColumnPass) with one thread per column and per sum (count, sum,

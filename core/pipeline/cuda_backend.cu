@@ -155,7 +155,7 @@ class CudaBackend final : public Backend {
     exposure_ready_ = false;
     if (with_exposure) WaitRaycast();  // (before the run's start: it waits for the default stream)
     sums_.QueueRun(levels, reference_pose_, initial, t, prior);
-    if (with_exposure) exposure_.Queue(ExposureViews(), sums_.device_pose(), sums_.stream());
+    if (with_exposure) exposure_.Queue(ExposureViews(), sums_.device_pose(), nullptr);  // the default stream, behind the run
     tracking::GaussNewtonRun run = sums_.FinishRun();
     valid_from_run_ = true;
     if (with_exposure) {

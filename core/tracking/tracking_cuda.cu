@@ -164,14 +164,14 @@ struct GpuNormalEquations::Impl {
   par::Reducer count_reducer{2};  // the valid pixels' counts, beside the levels' sums
   DeviceBuffer<DeviceTrack> track{1};
   DeviceTrack* host = nullptr;  // pinned: the frame's parameters out, the run's state back
-  cudaStream_t stream = nullptr, body_stream = nullptr, count_stream = nullptr;
+  cudaStream_t capture_stream = nullptr, body_stream = nullptr, count_stream = nullptr;
   cudaEvent_t fork = nullptr, join = nullptr;
   cudaGraphExec_t graph = nullptr;
   GraphShape shape;
   Valid valid;
   Impl() {
     HDRF_CUDA_CHECK(cudaMallocHost(&host, sizeof(DeviceTrack)));
-    HDRF_CUDA_CHECK(cudaStreamCreate(&stream));
+    HDRF_CUDA_CHECK(cudaStreamCreate(&capture_stream));
     HDRF_CUDA_CHECK(cudaStreamCreate(&body_stream));
     HDRF_CUDA_CHECK(cudaStreamCreate(&count_stream));
     HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&fork, cudaEventDisableTiming));
@@ -183,7 +183,7 @@ struct GpuNormalEquations::Impl {
     cudaEventDestroy(fork);
     cudaStreamDestroy(count_stream);
     cudaStreamDestroy(body_stream);
-    cudaStreamDestroy(stream);
+    cudaStreamDestroy(capture_stream);
     cudaFreeHost(host);
   }
 };
@@ -198,14 +198,14 @@ namespace {
 struct CaptureParts {
   par::Reducer &reducer, &count_reducer;
   DeviceTrack *d, *host;
-  cudaStream_t stream, body_stream, count_stream;
+  cudaStream_t capture_stream, body_stream, count_stream;
   cudaEvent_t fork, join;
 };
 cudaGraphExec_t CaptureRun(const CaptureParts& m, const GraphShape& g) {
   par::Reducer& reducer = m.reducer;
   DeviceTrack* d = m.d;
   DeviceTrack* host = m.host;
-  const cudaStream_t stream = m.stream, body_stream = m.body_stream;
+  const cudaStream_t stream = m.capture_stream, body_stream = m.body_stream;
   constexpr cudaStreamCaptureMode kMode = cudaStreamCaptureModeThreadLocal;
   HDRF_CUDA_CHECK(cudaStreamBeginCapture(stream, kMode));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&d->frame, &host->frame, sizeof(FrameParams), cudaMemcpyHostToDevice, stream));
@@ -287,7 +287,6 @@ GaussNewtonRun GpuNormalEquations::RunOnDevice(const std::vector<Level>& levels,
   return FinishRun();
 }
 
-cudaStream_t GpuNormalEquations::stream() const { return nullptr; }
 const PoseD* GpuNormalEquations::device_pose() const { return &impl_->track.data()->run.T; }
 
 void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
@@ -311,7 +310,7 @@ void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& 
   if (!m.graph || !(g == m.shape)) {
     if (m.graph) HDRF_CUDA_CHECK(cudaGraphExecDestroy(m.graph));
     m.graph = nullptr;
-    m.graph = CaptureRun({m.reducer, m.count_reducer, m.track.data(), m.host, m.stream, m.body_stream, m.count_stream,
+    m.graph = CaptureRun({m.reducer, m.count_reducer, m.track.data(), m.host, m.capture_stream, m.body_stream, m.count_stream,
                           m.fork, m.join},
                          g);
     m.shape = g;

@@ -37,12 +37,11 @@ class GpuNormalEquations {
   GaussNewtonRun RunOnDevice(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
                              const TrackerOptions& o, const MotionPrior* prior);
   // RunOnDevice in two halves: the run queued on the default stream (after its work), where
-  // more may be queued behind it (at the pose it leaves in device memory: stream()); then
-  // waited for and read back.
+  // more may be queued behind it (at the pose it leaves in device memory: device_pose());
+  // then waited for and read back.
   void QueueRun(const std::vector<Level>& levels, const Pose& T_world_ref, const Pose& initial,
                 const TrackerOptions& o, const MotionPrior* prior);
   GaussNewtonRun FinishRun();
-  cudaStream_t stream() const;
   const PoseD* device_pose() const;  // the run's pose, in device memory
   long CountLiveVertices(ImageView<const Float3> vertex_c);       // with depth (z > 0)
   long CountReferenceVertices(ImageView<const Float3> vertex_w);  // any non-zero vertex

@@ -48,10 +48,7 @@ HDRF_HD bool ClipToBox(const RaycastArgs& a, const Float3& o, const float inv_d[
   *t1 = leave;
   return enter < leave;
 }
-// One pixel a tile: each ray starts a truncation before its own pixel's fused depth. (Tiles of
-// 8 x 8 from their nearest depth, before 2026-11-28, started rays on slanted surfaces and near
-// depth edges far before their surface: 4.7 TSDF samples a ray in the room at 320x240.)
-inline constexpr int kGuideTile = 1;
+inline constexpr int kGuideTile = 8;
 inline int GuideTiles(int pixels) { return (pixels + kGuideTile - 1) / kGuideTile; }  // tiles of a side
 struct RayHit {
   Float3 vertex{0, 0, 0}, normal{0, 0, 0}, radiance{0, 0, 0};

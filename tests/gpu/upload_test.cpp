@@ -28,7 +28,8 @@ TEST(GpuUpload, EveryByteArrivesAtAnySizeAndThreadCount) {
       for (std::size_t i = 0; i < bytes; ++i) src[i] = std::uint8_t((i * 2654435761u) >> 13);
       void* d = cuda::Malloc(bytes + 64);
       cuda::CopyHostToDevice(d, guard.data(), guard.size());
-      cuda::UploadThroughStaging(static_cast<std::uint8_t*>(d) + 32, staging.data(), src.data(), bytes);
+      const cuda::UploadPart part{static_cast<std::uint8_t*>(d) + 32, staging.data(), src.data(), bytes};
+      cuda::UploadThroughStaging(&part, 1);
       cuda::CopyDeviceToHost(back.data(), d, back.size());
       cuda::Free(d);
       EXPECT_EQ(bytes == 0 ? 0 : std::memcmp(back.data() + 32, src.data(), bytes), 0) << bytes << " bytes, " << n << " threads";

@@ -8,13 +8,9 @@
 
 #include <cstdio>
 #include <fstream>
-#include <functional>
-
-#include <nlohmann/json.hpp>
 
 #include "common/error.h"
 #include "io/project.h"
-#include "volume/raycast_impl.h"
 #include "mesh/mesh.h"
 #include "pipeline/scan_session.h"
 #include "sim/synthetic_source.h"
@@ -219,96 +215,6 @@ TEST(Project, DamagedTruncatedAndNewerFilesAreRefusedNamingTheProblem) {
   test::ExpectErrorContaining(
       [&] { io::ResumeSession(p, [](pipeline::PipelineOptions& o) { o.volume.voxel_m = 0.01f; }); },
       {"good.hdrproj", "10.000000 mm", "project's own settings"});
-}
-
-// The project's chunks rewritten (`edit` gets each chunk's tag and bytes), their CRCs made right.
-std::string RewriteChunks(const std::string& bytes, const std::function<void(const std::string&, std::string&)>& edit) {
-  std::string out = bytes.substr(0, 16);  // magic and version
-  for (std::size_t at = 16; at + 16 <= bytes.size();) {
-    const std::string tag = bytes.substr(at, 4);
-    std::uint64_t size = 0;
-    std::memcpy(&size, bytes.data() + at + 4, 8);
-    std::string data = bytes.substr(at + 16, std::size_t(size));
-    at += 16 + std::size_t(size);
-    edit(tag, data);
-    std::uint32_t crc = 0xffffffffu;  // CRC-32 (the zlib polynomial)
-    for (const char c : data) {
-      crc ^= std::uint8_t(c);
-      for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-    }
-    crc ^= 0xffffffffu;
-    const std::uint64_t n = data.size();
-    out += tag;
-    out.append(reinterpret_cast<const char*>(&n), 8);
-    out.append(reinterpret_cast<const char*>(&crc), 4);
-    out += data;
-    if (tag == "END ") break;
-  }
-  return out;
-}
-
-// A project saved before the ray cast's guide went per pixel holds one start per 8 x 8 tile:
-// it opens, each pixel given its tile's start, and the scan resumes from it.
-TEST(Project, AGuideOfEightPixelTilesOpensAsEachPixelsStart) {
-  test::TempDir dir;
-  const auto frames = test::Frames(6, sim::AeMode::kFlicker);
-  pipeline::ScanSession s(pipeline::PipelineOptions{}, Sensor().camera, Sensor());
-  for (int i = 0; i < 4; ++i) s.Process(test::AsInput(frames[std::size_t(i)]));
-  const fs::path now = dir / "now.hdrproj";
-  io::SaveProject(now, s, {"test", "synthetic:frames=6", false});
-  const Image<float> guide = io::LoadProject(now).resume.raycast_guide;
-  const int w = Sensor().camera.width, h = Sensor().camera.height;
-  ASSERT_EQ(guide.width(), volume::GuideTiles(w));
-  ASSERT_EQ(guide.height(), volume::GuideTiles(h));
-  ASSERT_EQ(volume::kGuideTile, 1);
-  // The old guide: per tile, the nearest start of its pixels where all have one.
-  const int tw = (w + 7) / 8, th = (h + 7) / 8;
-  Image<float> tiles(tw, th);
-  int guided = 0;
-  for (int ty = 0; ty < th; ++ty)
-    for (int tx = 0; tx < tw; ++tx) {
-      float lo = 1e30f;
-      for (int y = 8 * ty; y < std::min(h, 8 * ty + 8); ++y)
-        for (int x = 8 * tx; x < std::min(w, 8 * tx + 8); ++x) lo = guide(x, y) > 0 && lo > 0 ? std::min(lo, guide(x, y)) : 0.f;
-      tiles(tx, ty) = lo;
-      guided += lo > 0;
-    }
-  ASSERT_GT(guided, tw * th / 4);
-  const std::string old = RewriteChunks(test::ReadText(now), [&](const std::string& tag, std::string& data) {
-    if (tag == "RCGD") data.assign(reinterpret_cast<const char*>(tiles.data()), tiles.size() * sizeof(float));
-    if (tag == "MANI") {
-      auto j = nlohmann::json::parse(data);
-      j["resume"]["raycast_guide"] = {tw, th};
-      data = j.dump();
-    }
-  });
-  const fs::path before = dir / "before.hdrproj";
-  test::WriteText(before, old);
-  const io::Project p = io::LoadProject(before);
-  ASSERT_EQ(p.resume.raycast_guide.width(), w);
-  ASSERT_EQ(p.resume.raycast_guide.height(), h);
-  long differ = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) differ += p.resume.raycast_guide(x, y) != tiles(x / 8, y / 8);
-  EXPECT_EQ(differ, 0);
-  // Resumed from it, the next frames track as in the scan that never stopped.
-  auto resumed = io::ResumeSession(p);
-  for (int i = 4; i < 6; ++i) {
-    s.Process(test::AsInput(frames[std::size_t(i)]));
-    resumed->Process(test::AsInput(frames[std::size_t(i)]));
-  }
-  EXPECT_LT(MaxPoseDifference(s.poses(), resumed->poses()), 0.001);
-  // Any other size is refused, naming the guide.
-  const std::string wrong = RewriteChunks(old, [&](const std::string& tag, std::string& data) {
-    if (tag == "RCGD") data.resize(std::size_t(tw) * std::size_t(th - 1) * sizeof(float));
-    if (tag == "MANI") {
-      auto j = nlohmann::json::parse(data);
-      j["resume"]["raycast_guide"] = {tw, th - 1};
-      data = j.dump();
-    }
-  });
-  test::WriteText(dir / "wrong.hdrproj", wrong);
-  test::ExpectErrorContaining([&] { io::LoadProject(dir / "wrong.hdrproj"); }, {"wrong.hdrproj", "start guide", "camera's size"});
 }
 
 // A save that cannot finish (here: the disk fills halfway) leaves the earlier save intact

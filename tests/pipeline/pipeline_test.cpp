@@ -165,7 +165,7 @@ TEST(Pipeline, AResumeGuideOfAnotherSizeIsRefused) {
   r.anchored = true;
   r.raycast_guide = Image<float>(20, 15, 1.f);
   const volume::Volume model(o.volume);
-  test::ExpectErrorContaining([&] { p.Resume(model, r); }, {"ray cast guide", "20x15", "320x240"});
+  test::ExpectErrorContaining([&] { p.Resume(model, r); }, {"ray cast guide", "20x15", "40x30"});
 }
 
 // The relocalisation code of a frame: each cell's mean depth of the pixels in it, and the
