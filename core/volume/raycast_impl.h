@@ -15,8 +15,7 @@ struct RaycastArgs {
   RigidTransform T_world_camera;
   float near_m, far_m;
   // Where the rays may start (raycast_driver.h, RaycastGuide): per tile of kGuideTile x
-  // kGuideTile pixels, a depth (m) no surface of the tile should lie before; 0 or no image:
-  // near_m. A ray whose first sample finds it behind a surface starts again from near_m.
+  // kGuideTile pixels, a depth (m) no surface of the tile lies before; 0 or no image: near_m.
   ImageView<const float> start{};
   // The world box of the allocated bricks (Volume::Bounds); rays are cast only inside it.
   // box_lo > box_hi (the default): no box, the whole way from near to far.
@@ -56,10 +55,7 @@ struct RayHit {
 };
 
 // The first zero crossing (front face) of the TSDF along the ray of pixel (x, y), skipping
-// empty 4x4x4-brick groups and empty bricks; a zero hit where the ray met nothing. A guided
-// ray (a.start) whose first TSDF sample is at or behind a surface (f <= 0: the depth the
-// guide came from lay behind the model there, noise) starts again where an unguided ray
-// starts, so a guide can cost a hit its time but not its surface.
+// empty 4x4x4-brick groups and empty bricks; a zero hit where the ray met nothing.
 template <typename Enc>
 HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
   RayHit hit;
@@ -71,16 +67,13 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   // allocated bricks (nothing outside it can be hit).
   float t0 = a.near_m;
   float t1 = a.far_m;
+  if (a.start.data) {
+    const float d = a.start(x / kGuideTile, y / kGuideTile) / dc.z;  // depth -> distance along the ray
+    t0 = d > t0 ? d : t0;
+  }
   const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
                           fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
   if (!ClipToBox(a, o, inv_d, &t0, &t1)) return hit;
-  const float unguided_t0 = t0;
-  bool guided = false;
-  if (a.start.data) {
-    const float d = a.start(x / kGuideTile, y / kGuideTile) / dc.z;  // depth -> distance along the ray
-    guided = d > t0;
-    t0 = guided ? d : t0;
-  }
   // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
   auto cell_exit = [&](const Float3& p, float cell, float t) {
     const float gp[3] = {p.x / cell, p.y / cell, p.z / cell};
@@ -150,15 +143,6 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
       }
       return hit;
     }
-    if (guided && f <= 0.f) {
-      // The guided start lies behind a surface of the model (the depth it came from was
-      // noisy there): the ray starts again where it would have without the guide.
-      guided = false;
-      t = unguided_t0;
-      prev_valid = false;
-      continue;
-    }
-    guided = false;  // in front of the model's surfaces: the guide held
     if (prev_valid && prev_f < 0.f && f > 0.f) return hit;  // back face: seen from behind
     prev_f = f;
     prev_t = t;
