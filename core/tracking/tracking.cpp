@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "common/error.h"
 #include "common/message.h"
@@ -93,8 +94,13 @@ void SumTerms(int w, int h, GnSystem& acc, const Terms&... terms) {
       GnSystem local;
       {
         TermBatch batch(local);
-        for (int y = y0; y < y1; ++y)
-          for (int x = 0; x < w; ++x) term(x, y, batch);
+        for (int y = y0; y < y1; ++y) {
+          if constexpr (requires { term.Row(y, w, batch); }) {
+            term.Row(y, w, batch);
+          } else {
+            for (int x = 0; x < w; ++x) term(x, y, batch);
+          }
+        }
       }
       partial[std::size_t(k++) * std::size_t(chunks) + std::size_t(c)] = local;
     };
@@ -146,13 +152,38 @@ LiveView LiveLevel::view() const {
   return {cam, View(vertex_c), View(normal_c), View(intensity), View(grad_x), View(grad_y), View(weight)};
 }
 
+namespace {
+
+// The ICP terms of a row: every pixel's projection first (IcpProject), then the terms at the
+// reference pixels found (IcpAt), in pixel order: IcpTerm's operations and order.
+struct IcpRows {
+  IcpArgs a;
+  void operator()(int x, int y, TermBatch& s) const { IcpTerm(a, x, y, s); }
+  void Row(int y, int w, TermBatch& s) const {
+    constexpr int kMaxRow = 4096;
+    if (w > kMaxRow) {
+      for (int x = 0; x < w; ++x) IcpTerm(a, x, y, s);
+      return;
+    }
+    Float3 p[kMaxRow];
+    int at[kMaxRow], n = 0;
+    std::int32_t u[kMaxRow][2];
+    for (int x = 0; x < w; ++x) {
+      int ux, uy;
+      if (IcpProject(a, x, y, &p[n], &ux, &uy)) at[n] = x, u[n][0] = ux, u[n][1] = uy, ++n;
+    }
+    for (int k = 0; k < n; ++k) IcpAt(a, at[k], y, p[k], u[k][0], u[k][1], s);
+  }
+};
+
+}  // namespace
+
 GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
                        const Pose& T_world_live, const TrackerOptions& o) {
   GnSystem acc;
   const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
   const bool use_photo = o.kind != TrackerKind::kIcp;
-  const auto icp = [&, a = use_icp ? MakeIcpArgs(ref, T_world_ref, live, T_world_live, o) : IcpArgs{}](
-                       int x, int y, TermBatch& s) { IcpTerm(a, x, y, s); };
+  const IcpRows icp{use_icp ? MakeIcpArgs(ref, T_world_ref, live, T_world_live, o) : IcpArgs{}};
   const auto photo = [&, a = use_photo ? MakePhotoArgs(ref, live, T_world_live, o) : PhotoArgs{}](
                          int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); };
   if (use_icp && use_photo && live.cam.width == ref.cam.width && live.cam.height == ref.cam.height) {

@@ -65,21 +65,29 @@ struct IcpArgs {
   double R_world_live[9];  // rotation of the live pose, row-major, double
   float cos_max_angle, max_dist, inv_sigma, huber_k;
 };
-template <typename Acc>
-HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, Acc& acc) {
+// IcpTerm in two halves: the live vertex carried into the world and projected into the
+// reference (IcpProject: false where it has no term), then the term at the reference pixel
+// found (IcpAt). The CPU runs a row's first halves before their second halves (the look-ups
+// of a row then wait on each other less); the GPU runs IcpTerm. The same operations.
+HDRF_HD bool IcpProject(const IcpArgs& a, int x, int y, Float3* p, int* ux, int* uy) {
   const Float3 v = a.live_vertex(x, y);
   const Float3 nl = a.live_normal(x, y);
   if (v.z <= 0.f || Dot(nl, nl) == 0.f) return false;  // (a length is 0 exactly where this is)
-  const Float3 p = a.T_world_live.Apply(v);
-  const Float3 pr = a.T_ref_world.Apply(p);
+  *p = a.T_world_live.Apply(v);
+  const Float3 pr = a.T_ref_world.Apply(*p);
   if (pr.z <= 0.f) return false;
   const Float2 u = a.ref_cam.Project(pr);
-  const int ux = RoundToInt(u.x), uy = RoundToInt(u.y);
-  if (ux < 0 || uy < 0 || ux >= a.ref_cam.width || uy >= a.ref_cam.height) return false;
+  *ux = RoundToInt(u.x), *uy = RoundToInt(u.y);
+  return !(*ux < 0 || *uy < 0 || *ux >= a.ref_cam.width || *uy >= a.ref_cam.height);
+}
+template <typename Acc>
+HDRF_HD bool IcpAt(const IcpArgs& a, int x, int y, const Float3& p, int ux, int uy, Acc& acc) {
   const Float3 m = a.ref_vertex(ux, uy), n = a.ref_normal(ux, uy);
   if (Dot(n, n) == 0.f) return false;
   const Float3 d = p - m;
   if (Length(d) > a.max_dist) return false;
+  const Float3 v = a.live_vertex(x, y);
+  const Float3 nl = a.live_normal(x, y);
   if (Dot(n, a.T_world_live.Rotate(nl)) < a.cos_max_angle) return false;
   const double r = Dot(n, d);
   const double* R = a.R_world_live;
@@ -94,6 +102,12 @@ HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, Acc& acc) {
                        (vx * ay - vy * ax) * s};
   AddRobustTerm(acc, J, r, s, a.huber_k, 27);
   return true;
+}
+template <typename Acc>
+HDRF_HD bool IcpTerm(const IcpArgs& a, int x, int y, Acc& acc) {
+  Float3 p;
+  int ux, uy;
+  return IcpProject(a, x, y, &p, &ux, &uy) && IcpAt(a, x, y, p, ux, uy, acc);
 }
 
 // Photometric: reference pixel (world vertex, NR) warped into the live frame; residual

@@ -96,6 +96,29 @@ TEST(Tracking, NormalEquationsAreTheSameBitsForAnyNumberOfThreads) {
     EXPECT_EQ(std::memcmp(sums[k].v, sums[k % 3].v, sizeof sums[k].v), 0) << "level " << k % 3 << ", run " << k / 3;
   EXPECT_GT(sums[0].icp_n(), 10000);  // both terms were summed over many pixels
   EXPECT_GT(sums[0].photo_n(), 10000);
+  // The CPU sums a row's ICP terms in two passes (every pixel's projection, then the terms
+  // at the reference pixels found): the bits of IcpTerm pixel by pixel, in chunks of four
+  // rows added in chunk order.
+  o.kind = tracking::TrackerKind::kIcp;
+  for (int l = 0; l < 3; ++l) {
+    const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
+    const tracking::LiveView lv = live.levels[std::size_t(l)].view();
+    tracking::GnSystem rows = tracking::AccumulateCpu(rv, ref.T_world_camera, lv, T, o);
+    const tracking::IcpArgs a = tracking::MakeIcpArgs(rv, ref.T_world_camera, lv, T, o);
+    tracking::GnSystem one_by_one;
+    for (int y0 = 0; y0 < lv.cam.height; y0 += 4) {
+      tracking::GnSystem chunk;
+      {
+        tracking::TermBatch batch(chunk);
+        for (int y = y0; y < std::min(lv.cam.height, y0 + 4); ++y)
+          for (int x = 0; x < lv.cam.width; ++x) tracking::IcpTerm(a, x, y, batch);
+      }
+      one_by_one.Merge(chunk);
+    }
+    EXPECT_EQ(std::memcmp(rows.v, one_by_one.v, sizeof rows.v), 0) << "level " << l;
+    EXPECT_GT(rows.icp_n(), l == 0 ? 10000 : 100);
+    EXPECT_EQ(rows.icp_n(), one_by_one.icp_n());
+  }
 }
 
 }  // namespace
