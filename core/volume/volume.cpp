@@ -310,8 +310,15 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
       const int b = todo[std::size_t(k)];
       const auto bc = brick_coord_[std::size_t(b)];
       V* vox = pool + std::size_t(b) * 512;
-      for (int i = 0; i < 512; ++i) {
-        const int done = IntegrateVoxel(args, bc[0], bc[1], bc[2], i, vox[i]);
+      // The brick's voxels in view first, then their updates (IntegrateVoxel's operations):
+      // the pixel look-ups of the first pass then wait on each other less.
+      VoxelInView seen[512];
+      std::int16_t at[512];
+      int n = 0;
+      for (int i = 0; i < 512; ++i)
+        if (ProjectVoxel(args, bc[0], bc[1], bc[2], i, &seen[n])) at[n++] = std::int16_t(i);
+      for (int j = 0; j < n; ++j) {
+        const int done = UpdateVoxel(args, seen[j], vox[at[j]]);
         updated += done & 1;
         rad_updates += (done >> 1) & 1;
       }

@@ -505,23 +505,41 @@ HDRF_HD void ForBricksAlongRay(const IntegrateArgs& a, const RigidTransform& T_w
   }
 }
 
-// Updates voxel i (0..511) of the brick at brick coordinates (bx, by, bz). Returns bit 0:
-// TSDF updated, bit 1: radiance updated.
-template <typename V>
-HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
+// Voxel i (0..511) of the brick at brick coordinates (bx, by, bz) seen in the frame: its
+// position in the camera, the pixel it projects to and its signed distance to the depth
+// there; false where it is not updated (behind the camera, outside the image, no depth,
+// further than the truncation behind the surface).
+struct VoxelInView {
+  Float3 pc;
+  int u, v;
+  float sdf;
+};
+HDRF_HD bool ProjectVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, VoxelInView* out) {
   const int lx = i & 7, ly = (i >> 3) & 7, lz = i >> 6;
   const float vs = a.voxel_m, trunc = a.trunc_m;
   const Float3 pw = Float3{(float(bx * 8 + lx) + 0.5f) * vs, (float(by * 8 + ly) + 0.5f) * vs,
                                       (float(bz * 8 + lz) + 0.5f) * vs};
   const Float3 pc = a.T_camera_world.Apply(pw);
-  if (pc.z <= 0.05f) return 0;
+  if (pc.z <= 0.05f) return false;
   const Float2 px = a.cam.Project(pc);
   const int u = RoundToInt(px.x), v = RoundToInt(px.y);
-  if (u < 0 || v < 0 || u >= a.cam.width || v >= a.cam.height) return 0;
+  if (u < 0 || v < 0 || u >= a.cam.width || v >= a.cam.height) return false;
   const float zd = a.depth(u, v);
-  if (!(zd > 0.f)) return 0;
+  if (!(zd > 0.f)) return false;
   const float sdf = zd - pc.z;
-  if (sdf < -trunc) return 0;
+  if (sdf < -trunc) return false;
+  *out = {pc, u, v, sdf};
+  return true;
+}
+
+// Updates a voxel ProjectVoxel found in view. Returns bit 0: TSDF updated, bit 1: radiance
+// updated.
+template <typename V>
+HDRF_HD int UpdateVoxel(const IntegrateArgs& a, const VoxelInView& in, V& stored) {
+  const float trunc = a.trunc_m;
+  const Float3 pc = in.pc;
+  const int u = in.u, v = in.v;
+  const float sdf = in.sdf;
   const float f = sdf / trunc < 1.f ? sdf / trunc : 1.f;
   const Float3 ray = Normalized(pc);
   const Float3 nrm = a.normals(u, v);
@@ -548,6 +566,14 @@ HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i
   }
   stored.StoreDistance(tsdf, w);
   return 1;
+}
+
+// Updates voxel i (0..511) of the brick at brick coordinates (bx, by, bz): ProjectVoxel, then
+// UpdateVoxel. Returns bit 0: TSDF updated, bit 1: radiance updated.
+template <typename V>
+HDRF_HD int IntegrateVoxel(const IntegrateArgs& a, int bx, int by, int bz, int i, V& stored) {
+  VoxelInView in;
+  return ProjectVoxel(a, bx, by, bz, i, &in) ? UpdateVoxel(a, in, stored) : 0;
 }
 
 }  // namespace hdrf::volume
