@@ -160,19 +160,18 @@ struct IcpRows {
   IcpArgs a;
   void operator()(int x, int y, TermBatch& s) const { IcpTerm(a, x, y, s); }
   void Row(int y, int w, TermBatch& s) const {
-    constexpr int kMaxRow = 4096;
-    if (w > kMaxRow) {
-      for (int x = 0; x < w; ++x) IcpTerm(a, x, y, s);
-      return;
+    constexpr int kRun = 256;  // pixels a pass takes (a wider row: several runs, in order)
+    Float3 p[kRun];
+    int at[kRun];
+    std::int32_t u[kRun][2];
+    for (int x0 = 0; x0 < w; x0 += kRun) {
+      int n = 0;
+      for (int x = x0; x < std::min(w, x0 + kRun); ++x) {
+        int ux, uy;
+        if (IcpProject(a, x, y, &p[n], &ux, &uy)) at[n] = x, u[n][0] = ux, u[n][1] = uy, ++n;
+      }
+      for (int k = 0; k < n; ++k) IcpAt(a, at[k], y, p[k], u[k][0], u[k][1], s);
     }
-    Float3 p[kMaxRow];
-    int at[kMaxRow], n = 0;
-    std::int32_t u[kMaxRow][2];
-    for (int x = 0; x < w; ++x) {
-      int ux, uy;
-      if (IcpProject(a, x, y, &p[n], &ux, &uy)) at[n] = x, u[n][0] = ux, u[n][1] = uy, ++n;
-    }
-    for (int k = 0; k < n; ++k) IcpAt(a, at[k], y, p[k], u[k][0], u[k][1], s);
   }
 };
 

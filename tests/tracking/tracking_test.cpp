@@ -97,8 +97,8 @@ TEST(Tracking, NormalEquationsAreTheSameBitsForAnyNumberOfThreads) {
   EXPECT_GT(sums[0].icp_n(), 10000);  // both terms were summed over many pixels
   EXPECT_GT(sums[0].photo_n(), 10000);
   // The CPU sums a row's ICP terms in two passes (every pixel's projection, then the terms
-  // at the reference pixels found): the bits of IcpTerm pixel by pixel, in chunks of four
-  // rows added in chunk order.
+  // at the reference pixels found), in runs of 256 pixels (a 320-pixel row takes two): the
+  // bits of IcpTerm pixel by pixel, in chunks of four rows added in chunk order.
   o.kind = tracking::TrackerKind::kIcp;
   for (int l = 0; l < 3; ++l) {
     const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
