@@ -223,7 +223,9 @@ class Pipeline {
     double residual_ratio = 0;  // the worst term's residual over its usual (0: no history)
     exposure::ExposureEstimate exposure;
   };
-  Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering);
+  // `recovering`: the pose does not come from the last one; `relocalised`: it comes from a
+  // relocalisation entry (a jump, held to a tighter radiance bound).
+  Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering, bool relocalised = false);
   double Quality(const tracking::TrackResult& r, const Verdict& v) const;
   tracking::TrackerOptions TrackerNow() const;  // the settings, with measured scales
   static double Median(std::vector<double> v);
