@@ -397,14 +397,13 @@ FrameReport Pipeline::Process(const FrameInput& in) {
     // sides can offer: where the model covers only part of the view (an area not scanned
     // yet), matching all of that part is a success, not a loss.
     const tracking::TrackerOptions topt = TrackerNow();
-    auto track = [&](const Pose& from, const tracking::MotionPrior* prior = nullptr, double jump_scale = 1) {
+    // `judge`: the options the run is judged with (topt, or the relocalisation's wider jump).
+    auto track = [&](const Pose& from, const tracking::MotionPrior* prior = nullptr,
+                     const tracking::TrackerOptions* judge = nullptr) {
       // The run first: its counts of valid pixels are the ones LiveValid / ReferenceValid
       // give (the order a call's arguments are evaluated in is the compiler's choice).
       const tracking::GaussNewtonRun run = b.RunTracker(from, topt, prior);
-      tracking::TrackerOptions judge = topt;
-      judge.max_jump_m = float(judge.max_jump_m * jump_scale);
-      judge.max_jump_deg = float(std::min(180.0, judge.max_jump_deg * jump_scale));
-      return tracking::JudgeTrack(run, from, std::min(b.LiveValid(), b.ReferenceValid()), judge, prior);
+      return tracking::JudgeTrack(run, from, std::min(b.LiveValid(), b.ReferenceValid()), judge ? *judge : topt, prior);
     };
     const Pose velocity = previous_pose_.inverse() * pose_;
     tracking::TrackResult r;
@@ -444,6 +443,9 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       // shifted along and turned about the camera's axes, which reach a camera beyond the
       // tracker's reach of that view. Their poses are judged as strictly as while recovering.
       const std::vector<const RelocEntry*> candidates = reloc_.Candidates(code);
+      tracking::TrackerOptions reloc_judge = topt;
+      reloc_judge.max_jump_m = float(topt.max_jump_m * kRelocalisedJumpScale);
+      reloc_judge.max_jump_deg = float(std::min(180.0, topt.max_jump_deg * kRelocalisedJumpScale));
       if (!candidates.empty()) {
         rep.nearest_entry = int(candidates[0] - reloc_.entries().data());
       } else {  // nothing to compare (a covered camera): the view nearest the last known pose
@@ -474,7 +476,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
             }
         }
         for (const Pose& start : starts) {
-          const tracking::TrackResult rc = track(start, nullptr, kRelocalisedJumpScale);
+          const tracking::TrackResult rc = track(start, nullptr, &reloc_judge);
           const Verdict vc = Verify(rc, in, true, true);
           if (vc.why.empty() && (!verdict.why.empty() || vc.score < verdict.score)) {
             r = rc;
