@@ -25,11 +25,11 @@ class GpuNormalEquations {
   ~GpuNormalEquations();
   GnSystem Accumulate(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
                       const Pose& T_world_live, const TrackerOptions& o);
-  // The Gauss-Newton iterations of RunGaussNewton (tracking.h), each level a loop node of a
-  // CUDA graph (one sum, then the step of gn_step.h): the pose stays on the device between
-  // iterations, and the result is read back once, with the finest level's valid pixels
-  // (last_valid()). `levels`:
-  // finest first, each the reference's and the live frame's views.
+  // The Gauss-Newton iterations of RunGaussNewton (tracking.h) in one cooperative kernel
+  // (each iteration a sum by every block, then the step of gn_step.h by the first): the pose
+  // stays on the device between iterations, and the result is read back once, with the
+  // finest level's valid pixels (last_valid()). `levels`: finest first, each the reference's
+  // and the live frame's views.
   struct Level {
     ReferenceView ref;
     LiveView live;
