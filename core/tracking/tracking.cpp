@@ -379,4 +379,8 @@ TrackResult JudgeTrack(const GaussNewtonRun& run, const Pose& initial, long live
   return res;
 }
 
+#if !HDRF_HAS_CUDA
+void SetTrackerRunBlockLimit(int) {}
+#endif
+
 }  // namespace hdrf::tracking

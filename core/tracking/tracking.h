@@ -189,6 +189,11 @@ TrackResult JudgeTrack(const GaussNewtonRun& run, const Pose& initial, long live
                        const MotionPrior* prior = nullptr);
 PoseD ToPoseD(const Pose& T);
 Pose FromPoseD(const PoseD& T);
+// For tests: the most blocks the CUDA backend's tracker run may use (0: as many as fit the
+// GPU at once, at most the reduction's 264; tracking_cuda.cu). Any number gives the same
+// bits: each block makes the partials of one or more of the reduction's blocks. Nothing
+// without a CUDA build.
+void SetTrackerRunBlockLimit(int most);
 
 // The per-pixel term arguments of one level and pose (shared by the CPU and CUDA sums), and
 // the CPU sum over a level.

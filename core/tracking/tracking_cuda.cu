@@ -1,6 +1,7 @@
 #include <cooperative_groups.h>
 
 #include <algorithm>
+#include <atomic>
 
 #include "common/parallel_cuda.cuh"
 #include "tracking/tracking_gpu.h"
@@ -339,6 +340,11 @@ struct GpuNormalEquations::Impl {
   ~Impl() { cudaFreeHost(host); }
 };
 
+namespace {
+std::atomic<int> run_block_limit{0};
+}
+void SetTrackerRunBlockLimit(int most) { run_block_limit = std::max(0, most); }
+
 GpuNormalEquations::GpuNormalEquations() : impl_(std::make_unique<Impl>()) {}
 GpuNormalEquations::~GpuNormalEquations() = default;
 
@@ -387,7 +393,9 @@ void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& 
   double* partial = m.partial.data();
   unsigned* counts = m.counts.data();
   void* args[] = {&d, &g, &partial, &counts};
-  HDRF_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(&RunKernel), dim3(m.blocks), dim3(kThreads),
+  const int limit = run_block_limit;
+  const int blocks = limit > 0 ? std::min(limit, m.blocks) : m.blocks;
+  HDRF_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(&RunKernel), dim3(blocks), dim3(kThreads),
                                               args, 0, nullptr));
   HDRF_CUDA_CHECK(cudaMemcpyAsync(&m.host->run, &d->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, nullptr));
 }

@@ -212,7 +212,7 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
         EXPECT_EQ(ga.v[32], gb.v[32]);
         EXPECT_LE(worst / scale, 1e-9);
       }
-      // The iterations on the device (a loop node per level: a sum, then a one-thread step) against the
+      // The iterations on the device (one cooperative kernel: each iteration's sums by every block, then the step) against the
       // same steps taken on the host over the GPU's sums, and against the CPU's run; from a
       // start 1 cm and half a degree off, with the motion prior at the tracked pose (it ends within
       // half of that of the tracked pose: this short sequence leaves the levels few iterations).
@@ -243,6 +243,38 @@ TEST_P(GpuStageParity, EveryStageMatchesTheCpuOnIdenticalInputs) {
       EXPECT_GT(ref_valid, w * h / 4);
       EXPECT_EQ(live_valid, cpu.backend().LiveValid());
       EXPECT_EQ(ref_valid, cpu.backend().ReferenceValid());
+      // The same run with fewer blocks than the GPU holds gives the same bits: each block then makes
+      // the partials of several of the reduction's blocks, and the counts are made by the blocks
+      // the coarsest level leaves idle (at 80x60 it sums in 19 blocks) or, with none idle, by all
+      // blocks first.
+      for (const int most : {1, 5, 19, 100}) {
+        tracking::SetTrackerRunBlockLimit(most);
+        const tracking::GaussNewtonRun again = gpu.backend().RunTracker(start, o.tracker, &prior);
+        const long again_live = gpu.backend().LiveValid(), again_ref = gpu.backend().ReferenceValid();
+        tracking::SetTrackerRunBlockLimit(0);
+        EXPECT_EQ(std::memcmp(again.T_world_camera.data(), dev.T_world_camera.data(), sizeof(double) * 16), 0)
+            << most << " blocks";
+        EXPECT_EQ(std::memcmp(again.last.v, dev.last.v, sizeof(again.last.v)), 0) << most << " blocks";
+        EXPECT_EQ(again.level_iterations, dev.level_iterations) << most << " blocks";
+        EXPECT_EQ(again_live, live_valid) << most << " blocks";
+        EXPECT_EQ(again_ref, ref_valid) << most << " blocks";
+      }
+      // Point-to-plane alone and normalized radiance alone: the device's run against the same steps
+      // taken on the host over the GPU's sums.
+      for (const tracking::TrackerKind kind : {tracking::TrackerKind::kIcp, tracking::TrackerKind::kNr}) {
+        tracking::TrackerOptions t = o.tracker;
+        t.kind = kind;
+        const tracking::GaussNewtonRun dk = gpu.backend().RunTracker(start, t, &prior);
+        const tracking::GaussNewtonRun hk = tracking::RunGaussNewton(
+            [&](int l, const Pose& P) { return gpu.backend().Accumulate(l, P, t); }, t.levels, start, t, &prior);
+        std::printf("  %s alone: iterations on the device %d, stepped on the host %d\n", tracking::TrackerName(kind),
+                    dk.iterations, hk.iterations);
+        EXPECT_GT(dk.iterations, 2) << tracking::TrackerName(kind);
+        EXPECT_EQ(dk.level_iterations, hk.level_iterations) << tracking::TrackerName(kind);
+        ExpectPosesClose(dk.T_world_camera, hk.T_world_camera, 1e-9, 1e-9, tracking::TrackerName(kind));
+        EXPECT_EQ(dk.last.v[31], hk.last.v[31]) << tracking::TrackerName(kind);
+        EXPECT_EQ(dk.last.v[32], hk.last.v[32]) << tracking::TrackerName(kind);
+      }
       // How long each takes (printed, for the benchmark notes; not asserted).
       auto time_of = [&](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();
