@@ -13,6 +13,11 @@
 //   }
 #pragma once
 
+#include <omp.h>
+
+#include <algorithm>
+#include <iterator>
+
 #include "common/host_device.h"
 
 // A lambda the primitives can run on either device (captures by value).
@@ -45,6 +50,27 @@ void ForEachPixel(Host, int w, int h, F f) {
 template <typename F>
 void ForEachPixelInTiles(Host h, int w, int hgt, F f) {
   ForEachPixel(h, w, hgt, f);
+}
+
+// Sorts [first, last) by `<` as std::sort does, its two halves side by side on two of the
+// CPU's threads and then merged (below 4096 elements, or with one thread, std::sort alone):
+// the same order wherever elements that compare equal are alike. Not inside a parallel loop.
+template <typename It>
+void Sort(Host, It first, It last) {
+  const auto n = std::distance(first, last);
+  if (n < 4096 || omp_get_max_threads() < 2) {
+    std::sort(first, last);
+    return;
+  }
+  const It mid = std::next(first, n / 2);
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    std::sort(first, mid);
+#pragma omp section
+    std::sort(mid, last);
+  }
+  std::inplace_merge(first, mid, last);
 }
 
 }  // namespace hdrf::par

@@ -285,7 +285,7 @@ Volume::IntegrateStats Volume::Integrate(const FrameInput& in) {
   for (const BrickKeySet& n : named)
     for (const std::uint64_t k : n.keys) all.Insert(k);
   std::vector<std::uint64_t> keys = std::move(all.keys);
-  std::sort(keys.begin(), keys.end());
+  par::Sort(par::Host{}, keys.begin(), keys.end());
   std::vector<int> todo;
   todo.reserve(keys.size());
   for (const std::uint64_t k : keys) {

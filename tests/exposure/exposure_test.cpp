@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 
 #include "common/error.h"
+#include "common/parallel.h"
 #include "support/sim_frames.h"
 #include "support/test_support.h"
 #include "common/se3.h"
@@ -83,6 +85,42 @@ TEST(ExposureMedian, IsWeightedAndNeedsEnoughSamples) {
   std::vector<std::pair<float, float>> few(10, {0.f, 1.f});
   EXPECT_FALSE(WeightedMedianRatio(few).valid);
   EXPECT_TRUE(WeightedMedianRatio(few, 10).valid);
+}
+
+// Many samples are sorted in two halves side by side and merged (par::Sort): the same order
+// as one std::sort, and so the same median bit for bit, whatever the ties (log ratios and
+// weights quantised so that many samples compare equal in one or both).
+TEST(ExposureMedian, ManySamplesSortedSideBySideGiveTheOneSortsMedian) {
+  std::uint32_t state = 12345;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  for (const int n : {4095, 4096, 4097, 30001, 100000}) {
+    std::vector<std::pair<float, float>> s;
+    for (int i = 0; i < n; ++i)
+      s.emplace_back(float(int(next() % 200) - 100) / 64.f, float(1 + next() % 7) / 8.f);
+    std::vector<std::pair<float, float>> halves = s, one = s;
+    par::Sort(par::Host{}, halves.begin(), halves.end());
+    std::sort(one.begin(), one.end());
+    EXPECT_TRUE(halves == one) << n << " samples";
+    // The median the one sort gives, summed as WeightedMedianRatio sums.
+    double total = 0, acc = 0;
+    for (const auto& p : one) total += p.second;
+    float want = 0;
+    for (const auto& p : one) {
+      acc += p.second;
+      if (acc >= 0.5 * total) {
+        want = p.first;
+        break;
+      }
+    }
+    const ExposureEstimate e = WeightedMedianRatio(s);
+    ASSERT_TRUE(e.valid);
+    EXPECT_EQ(e.samples, n);
+    EXPECT_EQ(e.log_ratio, want) << n << " samples";
+    EXPECT_EQ(e.ratio, std::exp(double(want))) << n << " samples";
+  }
 }
 
 }  // namespace
