@@ -87,15 +87,19 @@ class Reducer {
 };
 
 namespace detail {
+// The reduction's two halves, as device functions that another kernel may run for blocks of
+// its own (the tracker's run does: tracking_cuda.cu), so that its sums are these bits.
+// The pixels of sum block b of nb (kThreads threads each) added to this thread's `acc`.
 template <typename Acc, typename F>
-__global__ void __launch_bounds__(Reducer::kThreads)
-    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
-  constexpr int K = sizeof(Acc::v) / sizeof(double);
-  constexpr int kThreads = Reducer::kThreads;
-  Acc acc;
+__device__ void AddBlockPixels(int b, int nb, int w, int h, F f, Acc& acc) {
   const int n = w * h;
-  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) f(i % w, i / w, acc);
-  __shared__ double sh[kThreads / 32][K];
+  for (int i = b * Reducer::kThreads + int(threadIdx.x); i < n; i += nb * Reducer::kThreads) f(i % w, i / w, acc);
+}
+// The block's threads' `acc` summed (warps by shuffles, then the warps in order) into
+// partial[b * K ...]; `sh` is shared memory of kThreads / 32 rows of K. Every thread calls it;
+// it ends with the block synchronised.
+template <typename Acc, int K = sizeof(Acc::v) / sizeof(double)>
+__device__ void StoreBlockPartial(const Acc& acc, int b, double (*sh)[K], double* partial) {
   const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5;
 #pragma unroll
   for (int k = 0; k < K; ++k) {
@@ -106,28 +110,26 @@ __global__ void __launch_bounds__(Reducer::kThreads)
   __syncthreads();
   if (threadIdx.x < K) {
     double s = 0;
-    for (int wi = 0; wi < kThreads / 32; ++wi) s += sh[wi][threadIdx.x];
-    partial[blockIdx.x * K + threadIdx.x] = s;
+    for (int wi = 0; wi < Reducer::kThreads / 32; ++wi) s += sh[wi][threadIdx.x];
+    partial[b * K + threadIdx.x] = s;
   }
-  // The last block to finish adds the partials, in block order (the same sum every run).
-  __shared__ bool last;
-  __threadfence();
   __syncthreads();
-  if (threadIdx.x == 0) last = atomicAdd(done, 1u) == gridDim.x - 1;
-  __syncthreads();
-  if (!last) return;
-  __threadfence();
-  // G groups of K threads each add every G-th block's partials, then one thread per value
-  // adds the groups' sums in group order: the same order every run, G times shorter chains.
-  constexpr int G = kThreads / K > 0 ? kThreads / K : 1;
-  __shared__ double group_sum[G][K];
+}
+// G groups of K threads each add every G-th block's partials, then one thread per value adds
+// the groups' sums in group order, into out[0..K): the same order every run, G times shorter
+// chains. Loads through L2 (the other blocks' stores are there, not in this block's L1):
+// unlike volatile loads, the compiler may issue them ahead of the additions, which keep
+// their order. Every thread calls it; it ends with the block synchronised.
+template <int K>
+constexpr int kPartialGroups = Reducer::kThreads / K > 0 ? Reducer::kThreads / K : 1;
+template <int K>
+__device__ void AddPartials(int nb, const double* partial, double (*group_sum)[K], double* out) {
+  constexpr int G = kPartialGroups<K>;
   if (threadIdx.x < G * K) {
     const int k = threadIdx.x % K, grp = threadIdx.x / K;
     double s = 0;
-    // Loads through L2 (the other blocks' stores are there, not in this block's L1): unlike
-    // volatile loads, the compiler may issue them ahead of the additions, which keep their order.
 #pragma unroll 8
-    for (int b = grp; b < int(gridDim.x); b += G) s += __ldcg(partial + b * K + k);
+    for (int b = grp; b < nb; b += G) s += __ldcg(partial + b * K + k);
     group_sum[grp][k] = s;
   }
   __syncthreads();
@@ -136,6 +138,27 @@ __global__ void __launch_bounds__(Reducer::kThreads)
     for (int grp = 0; grp < G; ++grp) s += group_sum[grp][threadIdx.x];
     out[threadIdx.x] = s;
   }
+  __syncthreads();
+}
+
+template <typename Acc, typename F>
+__global__ void __launch_bounds__(Reducer::kThreads)
+    SumKernel(int w, int h, F f, double* partial, unsigned* done, double* out) {
+  constexpr int K = sizeof(Acc::v) / sizeof(double);
+  Acc acc;
+  AddBlockPixels(int(blockIdx.x), int(gridDim.x), w, h, f, acc);
+  __shared__ double sh[Reducer::kThreads / 32][K];
+  StoreBlockPartial(acc, int(blockIdx.x), sh, partial);
+  // The last block to finish adds the partials, in block order (the same sum every run).
+  __shared__ bool last;
+  __threadfence();
+  __syncthreads();
+  if (threadIdx.x == 0) last = atomicAdd(done, 1u) == gridDim.x - 1;
+  __syncthreads();
+  if (!last) return;
+  __threadfence();
+  __shared__ double group_sum[kPartialGroups<K>][K];
+  AddPartials<K>(int(gridDim.x), partial, group_sum, out);
   if (threadIdx.x == 0) *done = 0;  // ready for the next reduction
 }
 }  // namespace detail

@@ -150,15 +150,14 @@ __device__ __noinline__ bool StepOnBlock(DeviceRun& s, const StepPrior& prior, c
   return more;
 }
 
-// The run's sums are those of par::Reducer (the same blocks, the same order, the same bits):
-// `kSumBlocks` blocks of kThreads threads over a level's pixels, each block's partial sums,
-// then G groups of K threads each adding every G-th block's partials, and the groups' sums
-// added in group order. The run's kernel may have fewer blocks resident: each then makes the
-// partials of several of those blocks in turn.
+// The run's sums are those of par::Reducer (its blocks, their partials and the order they are
+// added in: the same device functions, so the same bits): `kSumBlocks` blocks of kThreads
+// threads over a level's pixels. The run's kernel may have fewer blocks resident: each then
+// makes the partials of several of those blocks in turn.
 constexpr int kThreads = par::Reducer::kThreads;
 constexpr int kSumBlocks = par::Reducer::kBlocks;
 constexpr int K = GnSystem::kSize;
-constexpr int G = kThreads / K;
+constexpr int G = par::detail::kPartialGroups<K>;
 __host__ __device__ constexpr int SumBlocks(int n) {
   const int b = (n + kThreads - 1) / kThreads;
   return b < 1 ? 1 : b > kSumBlocks ? kSumBlocks : b;
@@ -174,49 +173,19 @@ __device__ void CopyThroughL2(const T* from, T* to) {
   for (int i = threadIdx.x; i < int(sizeof(T) / sizeof(unsigned)); i += blockDim.x) t[i] = __ldcg(f + i);
 }
 
-// One sum block's partial sums of a level's terms (SumKernel's first half). Not inlined,
-// nor is the step: each is given the registers it needs, not the other's too.
+// One sum block's partial sums of a level's terms. Not inlined, nor is the step: each is
+// given the registers it needs, not the other's too.
 __device__ __noinline__ void BlockPartial(int b, int nb, int w, int h, const IcpArgs& icp, const PhotoArgs& photo,
                                           bool use_icp, bool use_photo, double (*sh)[K], double* partial) {
   GnSystem acc;
-  const int n = w * h;
-  for (int i = b * kThreads + int(threadIdx.x); i < n; i += nb * kThreads) {
-    const int x = i % w, y = i / w;
-    if (use_icp) IcpTerm(icp, x, y, acc);
-    if (use_photo) PhotoTerm(photo, x, y, acc);
-  }
-  const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5;
-#pragma unroll
-  for (int k = 0; k < K; ++k) {
-    double v = acc.v[k];
-    for (int off = 16; off > 0; off >>= 1) v += __shfl_down_sync(0xffffffffu, v, off);
-    if (lane == 0) sh[warp][k] = v;
-  }
-  __syncthreads();
-  if (threadIdx.x < K) {
-    double s = 0;
-    for (int wi = 0; wi < kThreads / 32; ++wi) s += sh[wi][threadIdx.x];
-    partial[b * K + threadIdx.x] = s;
-  }
-  __syncthreads();
-}
-
-// The blocks' partials added in SumKernel's order (its second half), into `sums`.
-__device__ void AddPartials(int nb, const double* partial, double (*group_sum)[K], double* sums) {
-  if (threadIdx.x < G * K) {
-    const int k = threadIdx.x % K, grp = threadIdx.x / K;
-    double s = 0;
-#pragma unroll 8
-    for (int b = grp; b < nb; b += G) s += __ldcg(partial + b * K + k);
-    group_sum[grp][k] = s;
-  }
-  __syncthreads();
-  if (threadIdx.x < K) {
-    double s = 0;
-    for (int grp = 0; grp < G; ++grp) s += group_sum[grp][threadIdx.x];
-    sums[threadIdx.x] = s;
-  }
-  __syncthreads();
+  par::detail::AddBlockPixels(
+      b, nb, w, h,
+      [&](int x, int y, GnSystem& a) {
+        if (use_icp) IcpTerm(icp, x, y, a);
+        if (use_photo) PhotoTerm(photo, x, y, a);
+      },
+      acc);
+  par::detail::StoreBlockPartial(acc, b, sh, partial);
 }
 
 // The finest level's valid pixels (live with depth, reference with a vertex), added to
@@ -296,7 +265,7 @@ __global__ void __launch_bounds__(kThreads) RunKernel(DeviceTrack* d, RunShape g
     first = false;
     grid.sync();
     if (lead) {
-      AddPartials(nb, partial, group_sum, sums);
+      par::detail::AddPartials<K>(nb, partial, group_sum, sums);
       const bool more = StepOnBlock(d->run, d->frame.prior, sums, level, cap, step);
       if (threadIdx.x == 0) {
         if (!more) {
