@@ -103,6 +103,7 @@ class CudaBackend final : public Backend {
   }
 
   void Convert(const ColorImage& color, const DepthImage& depth_m) override {
+    SettleModel();  // (its last frame's images are about to be overwritten)
     exposure_ready_ = false;
     // Through pinned staging memory, piece by piece (the CPU's threads copy the frame there
     // while the GPU fetches the pieces already copied at full bus speed): a copy from
@@ -192,19 +193,20 @@ class CudaBackend final : public Backend {
     a.max_confidence = maxconf_.view();
     volume_.Integrate(a, T);
   }
-  std::size_t AllocatedBricks() override { return volume_.allocated_bricks(); }
-  std::size_t LastVisibleBricks() override { return volume_.last_visible_bricks(); }
-  std::size_t VolumeBytes() override { return volume_.bytes(); }
-  bool VolumeFull() override { return volume_.full(); }
-  std::string VolumeFullReason() override { return volume_.full_reason(); }
-  std::array<Float3, 2> VolumeBounds() override { return volume_.Bounds(); }
+  std::size_t AllocatedBricks() override { return SettleModel(), volume_.allocated_bricks(); }
+  std::size_t LastVisibleBricks() override { return SettleModel(), volume_.last_visible_bricks(); }
+  std::size_t VolumeBytes() override { return SettleModel(), volume_.bytes(); }
+  bool VolumeFull() override { return SettleModel(), volume_.full(); }
+  std::string VolumeFullReason() override { return SettleModel(), volume_.full_reason(); }
+  std::array<Float3, 2> VolumeBounds() override { return SettleModel(), volume_.Bounds(); }
   StreamingStats Streaming() override {
+    SettleModel();
     return {volume_.gpu_bricks(), volume_.host_bricks(), volume_.gpu_bytes(), volume_.swapped_out(), volume_.swapped_in()};
   }
 
   void Raycast(const Pose& T, RaycastStart start) override {
     exposure_ready_ = false;
-    WaitRaycast();  // (its guide and rendering are rewritten)
+    AfterRaycast();  // (its guide and rendering are rewritten; the model may still be settling)
     if (start == RaycastStart::kDepth) {
       if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
       volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_.view());
@@ -214,7 +216,9 @@ class CudaBackend final : public Backend {
     }
     volume::RaycastArgs a{cam_, ToRigidTransform(T), o_.volume.raycast_near_m, o_.volume.raycast_far_m};
     if (guided_) a.start = guide_.view();
-    a.SetBox(volume_.Bounds());
+    // The box as the device keeps it: a frame's Integrate queued before may still be adding to it.
+    a.box_bricks = volume_.device_box();
+    a.box_brick_m = o_.volume.voxel_m * volume::kBrick;
     // On the ray cast's own stream, after everything queued so far (the model as fused, the
     // guide); the next frame's upload and first stages run beside it.
     HDRF_CUDA_CHECK(cudaEventRecord(side_.ready, 0));
@@ -222,6 +226,8 @@ class CudaBackend final : public Backend {
     volume_.Raycast(a, render_.views(), side_.stream);
     HDRF_CUDA_CHECK(cudaEventRecord(side_.done, side_.stream));
     raycast_pending_ = true;
+    raycast_unsettled_ = !volume_.settled();
+    raycast_start_ = start;
     render_pose_ = T;
     has_render_ = true;
     render_nr_ready_ = false;  // a model without NR: normalized once the clipping level is known
@@ -272,11 +278,12 @@ class CudaBackend final : public Backend {
   }
 
   volume::Volume::Rendering Render(const Pose& T) override {
+    SettleModel();
     RenderD tmp(cam_.width, cam_.height);
     RaycastInto(tmp, T);
     return tmp.ToHost();
   }
-  const volume::Volume& DownloadVolume() override { return volume_.Download(); }
+  const volume::Volume& DownloadVolume() override { return SettleModel(), volume_.Download(); }
   void LoadVolume(const volume::Volume& model) override {
     exposure_ready_ = false;
     WaitRaycast();
@@ -286,6 +293,7 @@ class CudaBackend final : public Backend {
     valid_from_run_ = false;
   }
   mesh::Mesh ExtractMesh(const std::function<bool(double)>& progress) override {
+    SettleModel();
     // On the GPU the extraction takes milliseconds: progress at its start and end only.
     if (progress && !progress(0.0)) throw Cancelled();
     // Part of the model in host memory (a GPU budget): the whole model is meshed on the CPU.
@@ -307,7 +315,7 @@ class CudaBackend final : public Backend {
     }
     return v;
   }
-  volume::BrickSet ChangedBricks() override { return volume_.CopyChanged(); }
+  volume::BrickSet ChangedBricks() override { return SettleModel(), volume_.CopyChanged(); }
   FrameImages DownloadStages() override {
     WaitRaycast();
     if (!render_nr_ready_) NormalizeRender(kNoClip);
@@ -339,8 +347,22 @@ class CudaBackend final : public Backend {
   exposure::ExposureArgs ExposureViews() const {
     return {render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_, {}};
   }
-  // The default stream's next work waits (on the GPU, not the host) for the last ray cast.
+  // The model's host side after a queued Integrate (DeviceVolume::Settle). Where it fused
+  // new bricks only now, a ray cast queued after the Integrate saw the model without them:
+  // it is cast again (the work Settle queues waits for it first).
+  void SettleModel() {
+    if (volume_.settled()) return;
+    if (volume_.Settle(raycast_pending_ ? side_.done : nullptr) && raycast_unsettled_) Raycast(render_pose_, raycast_start_);
+    raycast_unsettled_ = false;
+  }
+  // The default stream's next work waits (on the GPU, not the host) for the last ray cast,
+  // and the model is settled: for whatever reads the rendering or changes the model.
   void WaitRaycast() {
+    SettleModel();
+    AfterRaycast();
+  }
+  // The same without settling the model (the next ray cast, queued behind the model's work).
+  void AfterRaycast() {
     if (!raycast_pending_) return;
     HDRF_CUDA_CHECK(cudaStreamWaitEvent(0, side_.done, 0));
     raycast_pending_ = false;
@@ -443,6 +465,8 @@ class CudaBackend final : public Backend {
   };
   SideStream side_;  // (last: gone before the buffers it may still write)
   bool raycast_pending_ = false;
+  bool raycast_unsettled_ = false;  // the last ray cast was queued before the model was settled
+  RaycastStart raycast_start_ = RaycastStart::kNear;  // ... from there
 };
 
 }  // namespace

@@ -568,17 +568,19 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       }
     }
   }
-  rep.allocated_bricks = b.AllocatedBricks();
-  if (!full_reported_ && rep.fused && b.VolumeFull()) {
-    rep.volume_full = b.VolumeFullReason();
-    full_reported_ = true;
-  }
   const auto t5 = now();
   // 6. Ray cast the model from the pose, and the next frame's reference: the ray cast (frame
   // to model) or this frame where its pose was accepted (frame to frame).
   // A fused frame's depth was taken at this pose: the rays start near the surface it shows.
   if (rep.fused || accepted || searched || !b.HasRender())
     b.Raycast(pose_, rep.fused ? Backend::RaycastStart::kDepth : Backend::RaycastStart::kNear);
+  // The model's counts once the ray cast is queued (the GPU's integration may still be
+  // running: the host waits for it here, with the ray cast queued behind it).
+  rep.allocated_bricks = b.AllocatedBricks();
+  if (!full_reported_ && rep.fused && b.VolumeFull()) {
+    rep.volume_full = b.VolumeFullReason();
+    full_reported_ = true;
+  }
   if (reference_from_model_) {
     ref_pending_ = clip;  // made when the next frame needs it (or the backend is looked at)
   } else if (accepted || !b.HasReference()) {

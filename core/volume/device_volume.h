@@ -29,6 +29,7 @@ void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const Image
 class DeviceVolume {
  public:
   explicit DeviceVolume(const VolumeOptions& o);
+  ~DeviceVolume();
   DeviceVolume(const DeviceVolume&) = delete;
   DeviceVolume& operator=(const DeviceVolume&) = delete;
 
@@ -36,24 +37,43 @@ class DeviceVolume {
   // bricks in the truncation band of every second depth pixel (a per-frame hash set), gives
   // the new ones slots in key order (as Volume::Integrate does) up to the memory limit, then
   // updates each voxel of the visible bricks.
+  //
+  // Where the pool has room for a block's worth of new bricks (and there is no GPU budget
+  // and no limit reached), the whole frame is queued without a wait: one block places up to
+  // kPlaceMost new bricks on the device. The host's side (the counts, the box, and the new
+  // bricks the device could not place) is finished by Settle, which everything that reads
+  // the model's state on the host calls first (the accessors below refuse to answer before).
   void Integrate(const IntegrateArgs& a, const Pose& T_world_camera);
+  // Finishes the last Integrate on the host (waits for its counts, queued behind it). True
+  // where it placed and fused new bricks only now, after the queued work: a ray cast queued
+  // since then saw the model without them and must be cast again. The work it queues for
+  // them waits for `after` first (that ray cast's end, which reads the tables it changes).
+  bool Settle(cudaEvent_t after = nullptr);
+  bool settled() const { return !pending_; }
   // Ray casts into device images (the shared driver, raycast_driver.h), on `stream`.
   void Raycast(const RaycastArgs& a, const RenderingViews& out, cudaStream_t stream = nullptr) const;
+  // The box of the allocated bricks on the device (brick coordinates: low x, y, z, high x, y,
+  // z; low above high while empty), kept by the kernels that place bricks: a ray cast queued
+  // behind an Integrate clips its rays to it without waiting for the host (RaycastArgs).
+  const int* device_box() const { return counts_.data() + kBoxAt; }
+  // The most new bricks one frame places on the device without the host (SetDevicePlaceLimit
+  // lowers it, for tests).
+  static constexpr int kPlaceMost = 1024;
 
   const VolumeOptions& options() const { return mirror_.options(); }
   // Bricks in the model: on the GPU and, with a GPU budget, moved to host memory.
-  std::size_t allocated_bricks() const { return std::size_t(allocated_) + host_.size(); }
-  std::size_t gpu_bricks() const { return std::size_t(allocated_); }
-  std::size_t host_bricks() const { return host_.size(); }
+  // (Each of these after Settle: before it they throw.)
+  std::size_t allocated_bricks() const { return Settled(), std::size_t(allocated_) + host_.size(); }
+  std::size_t gpu_bricks() const { return Settled(), std::size_t(allocated_); }
+  std::size_t host_bricks() const { return Settled(), host_.size(); }
   long swapped_out() const { return swapped_out_; }  // bricks moved to host memory so far
   long swapped_in() const { return swapped_in_; }    // ... and back
   std::size_t gpu_bytes() const;
-  std::size_t last_visible_bricks() const { return std::size_t(last_visible_); }
+  std::size_t last_visible_bricks() const { return Settled(), std::size_t(last_visible_); }
   std::size_t bytes() const;
-  bool full() const { return !full_reason_.empty(); }
-  const std::string& full_reason() const { return full_reason_; }
-  // The world box of the allocated bricks (Volume::Bounds), kept on the host as bricks are
-  // added (the new bricks' coordinates are read back each frame: a few hundred bytes).
+  bool full() const { return Settled(), !full_reason_.empty(); }
+  const std::string& full_reason() const { return Settled(), full_reason_; }
+  // The world box of the allocated bricks (Volume::Bounds), read with the counts.
   std::array<Float3, 2> Bounds() const;
   // Device views of the arrays for the per-element functions (V: the options' encoding).
   template <typename V>
@@ -85,6 +105,20 @@ class DeviceVolume {
   // host memory and the pool is compacted.
   void SwapOut(int count);
   int SplitVisible(int* n);  // step 2 of Integrate: counts of visible, new, to-do
+  // Step 3 of Integrate on the host: the `wanted` new bricks (in fresh_) take slots up to
+  // the limits, their to-do entries after those there are; the number placed.
+  int PlaceOnHost(int wanted);
+  void Settled() const;            // throws where an Integrate is not settled
+  void ReadBoxFrom(const int* b);  // box_ from the device's layout (device_box)
+  void WriteBox();                 // the device's box from box_
+
+  // counts_: visible, new, to-do, the device's placing refused (0/1), placed on the device,
+  // then the box (kBoxAt: low x, y, z, high x, y, z).
+  static constexpr int kBoxAt = 5, kCounts = kBoxAt + 6;
+  int* counts_host_ = nullptr;      // pinned: counts_ read back behind a queued Integrate
+  cudaEvent_t counted_ = nullptr;   // ... there
+  bool pending_ = false;            // an Integrate queued, not settled
+  IntegrateArgs pending_args_{};    // its frame (Settle fuses the bricks the device left)
 
   Volume mirror_;  // options and limits; the host copy on request
   bool mirror_fresh_ = true;
@@ -94,7 +128,7 @@ class DeviceVolume {
   DeviceBuffer<std::uint64_t> frame_set_;           // per-frame set of visible brick keys
   DeviceBuffer<std::uint64_t> visible_, fresh_, fresh_sorted_;
   DeviceBuffer<int> todo_;
-  DeviceBuffer<int> counts_;  // visible, new, todo
+  DeviceBuffer<int> counts_;  // kCounts: see above
   DeviceBuffer<std::uint8_t> temp_;
   DeviceBuffer<std::uint8_t> pool_;  // 512 encoded voxels per brick
   DeviceBuffer<BrickCoord> coords_;

@@ -21,6 +21,11 @@ struct RaycastArgs {
   // box_lo > box_hi (the default): no box, the whole way from near to far.
   Float3 box_lo{1, 1, 1}, box_hi{0, 0, 0};
   void SetBox(const std::array<Float3, 2>& b) { box_lo = b[0], box_hi = b[1]; }
+  // Or the box as the device keeps it (DeviceVolume::device_box, read by each ray: it may be
+  // written by the work queued before the ray cast): brick coordinates, low x, y, z then high
+  // x, y, z (low above high: no bricks), and the brick's side; the same box as BrickBox::World.
+  const int* box_bricks = nullptr;
+  float box_brick_m = 0;
 };
 
 // Narrows [t0, t1] along the ray o + t d (inv_d: 1 / d per axis, 1e9 where d is about 0) to
@@ -28,8 +33,17 @@ struct RaycastArgs {
 // outside the box is defined (its corners inside carry less than half its weight), so the
 // hits are those of the whole ray.
 HDRF_HD bool ClipToBox(const RaycastArgs& a, const Float3& o, const float inv_d[3], float* t0, float* t1) {
-  if (a.box_lo.x > a.box_hi.x) return true;
-  const float lo[3] = {a.box_lo.x, a.box_lo.y, a.box_lo.z}, hi[3] = {a.box_hi.x, a.box_hi.y, a.box_hi.z};
+  float lo[3] = {a.box_lo.x, a.box_lo.y, a.box_lo.z}, hi[3] = {a.box_hi.x, a.box_hi.y, a.box_hi.z};
+  if (a.box_bricks) {
+    const int* b = a.box_bricks;
+    if (b[0] > b[3]) return false;  // no bricks
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = float(b[k]) * a.box_brick_m;
+      hi[k] = float(b[3 + k] + 1) * a.box_brick_m;
+    }
+  } else if (a.box_lo.x > a.box_hi.x) {
+    return true;
+  }
   const float op[3] = {o.x, o.y, o.z};
   if (lo[0] >= hi[0] || lo[1] >= hi[1] || lo[2] >= hi[2]) return false;  // no bricks
   float enter = *t0, leave = *t1;

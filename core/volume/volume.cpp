@@ -345,4 +345,8 @@ Volume::Rendering Volume::Raycast(const PinholeCamera& cam, const Pose& T_wc, co
   return r;
 }
 
+#if !HDRF_HAS_CUDA
+void SetDevicePlaceLimit(int) {}
+#endif
+
 }  // namespace hdrf::volume

@@ -205,4 +205,9 @@ class Volume {
   std::string full_reason_;
 };
 
+// For tests: the most new bricks a frame's integration on the GPU places on the device, without
+// the host (DeviceVolume::kPlaceMost, 1024, by default, and for a negative number; 0: every
+// frame's through the host; any number gives the same model). Nothing without a CUDA build.
+void SetDevicePlaceLimit(int most);
+
 }  // namespace hdrf::volume

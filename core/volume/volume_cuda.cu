@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "common/error.h"
@@ -16,6 +17,7 @@ namespace hdrf::volume {
 
 namespace {
 using ull = unsigned long long;
+int place_limit = DeviceVolume::kPlaceMost;  // SetDevicePlaceLimit
 
 // Inserts a key into a table of HashView's layout; false where it was there already. Each
 // slot is read first and only an empty one is claimed atomically: a key is set once and never
@@ -43,20 +45,34 @@ __device__ bool InsertKey(std::uint64_t* keys, int* values, std::uint32_t mask, 
 }
 
 // One block of 512 threads per visible brick (a voxel each), blocks striding over the list.
+// The to-do list's entries from `first` to its count (counts[2], read on the device); each
+// brick is flagged as changed (CopyChanged).
 template <typename V>
 __global__ void IntegrateBricksKernel(IntegrateArgs a, V* pool, const BrickCoord* coords, const int* todo,
-                                      const int* counts) {
+                                      const int* counts, int first, std::uint8_t* dirty) {
   const int n_todo = counts[2];
-  for (int k = blockIdx.x; k < n_todo; k += gridDim.x) {
+  for (int k = first + int(blockIdx.x); k < n_todo; k += gridDim.x) {
     const int slot = todo[k];
+    if (threadIdx.x == 0) dirty[slot] = 1;
     const BrickCoord bc = coords[slot];
     IntegrateVoxel(a, bc.x, bc.y, bc.z, threadIdx.x, pool[long(slot) * 512 + threadIdx.x]);
   }
 }
 template <typename V>
-void IntegrateBricks(const IntegrateArgs& a, V* pool, const BrickCoord* coords, const int* todo, const int* counts) {
-  IntegrateBricksKernel<V><<<1024, 512>>>(a, pool, coords, todo, counts);
+void IntegrateBricks(const IntegrateArgs& a, V* pool, const BrickCoord* coords, const int* todo, const int* counts,
+                     int first, std::uint8_t* dirty) {
+  IntegrateBricksKernel<V><<<1024, 512>>>(a, pool, coords, todo, counts, first, dirty);
   HDRF_CUDA_CHECK_LAUNCH();
+}
+
+// The box of the allocated bricks as the device keeps it (DeviceVolume::device_box).
+__device__ void AddToBox(int* box, const BrickCoord& c) {
+  atomicMin(box + 0, c.x);
+  atomicMin(box + 1, c.y);
+  atomicMin(box + 2, c.z);
+  atomicMax(box + 3, c.x);
+  atomicMax(box + 4, c.y);
+  atomicMax(box + 5, c.z);
 }
 
 // Fresh voxels for slots [first, first + count) of the pool.
@@ -122,13 +138,84 @@ __global__ void __launch_bounds__(kRankSortMost) RankSortKernel(const std::uint6
     out[rank] = v;
   }
 }
+
+// A frame's new bricks (counts[1] of them in `fresh`) placed without the host: each takes
+// slot base + its rank (key order, as on the host and the CPU), enters the tables, the box
+// and the to-do list. Where they are more than `room`, nothing is placed and counts[3] says
+// so (DeviceVolume::Settle places them). counts[4]: the number placed.
+struct PlaceTables {
+  std::uint64_t *keys, *gkeys;
+  int *values, *gvalues;
+  std::uint32_t mask;
+  BrickCoord* coords;
+  int* todo;
+};
+__global__ void __launch_bounds__(DeviceVolume::kPlaceMost)
+    PlaceNewKernel(const std::uint64_t* fresh, int room, int base, PlaceTables t, int* counts, int* box) {
+  __shared__ std::uint64_t k[DeviceVolume::kPlaceMost];
+  const int n = counts[1], first_todo = counts[2], i = int(threadIdx.x);
+  if (n > room) {  // (n is the same for the whole block)
+    if (i == 0) counts[3] = 1;
+    return;
+  }
+  if (i < n) k[i] = fresh[i];
+  __syncthreads();
+  if (i < n) {
+    const std::uint64_t v = k[i];
+    int rank = 0;
+    for (int j = 0; j < n; ++j) rank += (k[j] < v || (k[j] == v && j < i)) ? 1 : 0;
+    BrickCoord c;
+    DecodeBrickKey(v, &c.x, &c.y, &c.z);
+    const int slot = base + rank;
+    t.coords[slot] = c;
+    InsertKey(t.keys, t.values, t.mask, v, slot);
+    InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
+    t.todo[first_todo + rank] = slot;
+    AddToBox(box, c);
+  }
+  __syncthreads();  // (every thread has read counts[2])
+  if (i == 0) {
+    counts[2] = first_todo + n;
+    counts[4] = n;
+  }
+}
+
+// `n` new bricks, sorted, into slots base.. (the host's way: Integrate without room on the
+// device, or with a GPU budget); their to-do entries after those there are (counts[2]).
+void PlaceSorted(const std::uint64_t* sorted, int n, int base, PlaceTables t, int* counts, int* box) {
+  par::ForEach(par::Gpu{}, n, [=] __device__(int i) {
+    const std::uint64_t k = sorted[i];
+    BrickCoord c;
+    DecodeBrickKey(k, &c.x, &c.y, &c.z);
+    t.coords[base + i] = c;
+    InsertKey(t.keys, t.values, t.mask, k, base + i);
+    InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
+    t.todo[atomicAdd(counts + 2, 1)] = base + i;
+    AddToBox(box, c);
+  });
+}
 }  // namespace
 
+void SetDevicePlaceLimit(int most) { place_limit = most < 0 ? DeviceVolume::kPlaceMost : std::min(most, int(DeviceVolume::kPlaceMost)); }
+
 DeviceVolume::DeviceVolume(const VolumeOptions& o) : mirror_(o), vbytes_(EncodingBytes(o.encoding)) {
-  counts_ = DeviceBuffer<int>(3);
-  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, 3 * sizeof(int)));
+  counts_ = DeviceBuffer<int>(kCounts);
+  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, kCounts * sizeof(int)));
+  WriteBox();
+  HDRF_CUDA_CHECK(cudaMallocHost(&counts_host_, kCounts * sizeof(int)));
+  HDRF_CUDA_CHECK(cudaEventCreateWithFlags(&counted_, cudaEventDisableTiming));
   RebuildTables(4096);
   Reserve(1024);
+}
+
+DeviceVolume::~DeviceVolume() {
+  if (pending_) cudaEventSynchronize(counted_);
+  cudaEventDestroy(counted_);
+  cudaFreeHost(counts_host_);
+}
+
+void DeviceVolume::Settled() const {
+  if (pending_) throw Error("internal: the GPU model was read on the host before its last frame was settled");
 }
 
 std::size_t DeviceVolume::bytes() const { return gpu_bytes() + host_bytes_; }
@@ -183,6 +270,7 @@ bool DeviceVolume::Reserve(int want) {
 }
 
 void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
+  Settled();
   // 1. The distinct bricks in the truncation band of every second depth pixel: a per-frame
   // hash set (at most half full) collects them into a list.
   const int rw = (a.cam.width + 1) / 2, rh = (a.cam.height + 1) / 2;
@@ -198,7 +286,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
     temp_ = DeviceBuffer<std::uint8_t>(std::max(sort_bytes, std::size_t(16)));
   }
   HDRF_CUDA_CHECK(cudaMemset(frame_set_.data(), 0xff, frame_set_.size() * sizeof(std::uint64_t)));
-  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, 3 * sizeof(int)));
+  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, kBoxAt * sizeof(int)));
   std::uint64_t* set = frame_set_.data();
   std::uint64_t* visible = visible_.data();
   int* counts = counts_.data();
@@ -213,21 +301,47 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
       if (InsertKey(set, nullptr, set_mask, k, 0)) visible[atomicAdd(counts, 1)] = k;
     });
   });
+  ++frame_;
+  mirror_fresh_ = false;
+  const int gpu_budget = int(options().gpu_bricks());
+  auto integrate_from = [&](int first) {
+    VisitEncoding(options().encoding, [&](auto tag) {
+      IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
+                                     counts_.data(), first, dirty_.data());
+    });
+  };
+  // 2-4 queued without a wait where the device can place the new bricks: up to a block's
+  // worth, within the pool's room, the tables' half and the memory limit; no GPU budget (its
+  // bookkeeping is the host's). Settle reads the counts (or places what the device could not).
+  const int room = std::min({place_limit, capacity_ - allocated_, int((keys_.size() - 2) / 2) - allocated_,
+                             int(mirror_.max_bricks()) - allocated_});
+  if (gpu_budget <= 0 && host_.empty() && full_reason_.empty() && room > 0) {
+    SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(),
+              int(visible_.size()), counts_.data(), fresh_.data(), todo_.data());
+    const PlaceTables t{keys_.data(), group_keys_.data(), values_.data(), group_values_.data(),
+                        std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()};
+    PlaceNewKernel<<<1, kPlaceMost>>>(fresh_.data(), room, allocated_, t, counts_.data(), counts_.data() + kBoxAt);
+    HDRF_CUDA_CHECK_LAUNCH();
+    integrate_from(0);
+    HDRF_CUDA_CHECK(cudaMemcpyAsync(counts_host_, counts_.data(), kCounts * sizeof(int), cudaMemcpyDeviceToHost, 0));
+    HDRF_CUDA_CHECK(cudaEventRecord(counted_, 0));
+    pending_args_ = a;
+    pending_ = true;
+    return;
+  }
   // 2. Split into bricks the model has (straight to the to-do list) and new ones. With a GPU
   // budget that the new ones would pass, the bricks seen longest ago move to host memory
   // first (never one seen in this frame), and the split is made again on the compacted pool.
   int n[3];
   SplitVisible(n);
-  ++frame_;
-  const int gpu_budget = int(options().gpu_bricks());
   if (gpu_budget > 0) {
     last_seen_.resize(std::size_t(allocated_), 0);
     std::vector<int> seen(static_cast<std::size_t>(n[2]));
     if (n[2] > 0) cuda::CopyDeviceToHost(seen.data(), todo_.data(), seen.size() * sizeof(int));
     for (int s : seen) last_seen_[std::size_t(s)] = frame_;
     if (allocated_ + n[1] > gpu_budget) {
-      const int room = gpu_budget - gpu_budget / 8;  // slack: bricks move out in batches
-      const int out = std::min(allocated_ + n[1] - room, allocated_ - n[2]);
+      const int room_left = gpu_budget - gpu_budget / 8;  // slack: bricks move out in batches
+      const int out = std::min(allocated_ + n[1] - room_left, allocated_ - n[2]);
       if (out > 0) {
         SwapOut(out);
         SplitVisible(n);
@@ -235,78 +349,92 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
     }
   }
   // 3. New bricks take the next slots in key order (as on the CPU), up to the limits.
-  const int wanted = n[1];
-  int allowed = 0;
-  if (wanted > 0 && full_reason_.empty()) {
-    std::size_t bytes = temp_.size();
-    if (wanted <= kRankSortMost) {
-      RankSortKernel<<<1, (wanted + 31) / 32 * 32>>>(fresh_.data(), wanted, fresh_sorted_.data());
-      HDRF_CUDA_CHECK_LAUNCH();
-    } else {
-      HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(temp_.data(), bytes, fresh_.data(), fresh_sorted_.data(), wanted));
-    }
-    allowed = std::min<int>(wanted, int(mirror_.max_bricks()) - int(allocated_bricks()));
-    if (allowed < wanted)
-      full_reason_ = "the model reached its memory budget of " + std::to_string(long(options().max_memory_mb)) +
-                     " MiB (volume.max_memory_mb): " + std::to_string(mirror_.max_bricks()) + " bricks";
-    if (gpu_budget > 0 && allocated_ + allowed > gpu_budget) {
-      allowed = std::max(0, gpu_budget - allocated_);
-      if (full_reason_.empty())
-        full_reason_ = "one view needs more bricks than the GPU budget of " +
-                       std::to_string(long(options().gpu_memory_mb)) + " MiB holds (volume.gpu_memory_mb: " +
-                       std::to_string(gpu_budget) + " bricks)";
-    }
-    if (allowed > 0 && !Reserve(allocated_ + allowed)) allowed = std::max(0, capacity_ - allocated_);
-    if (allowed > 0) {
-      const std::uint64_t* sorted = fresh_sorted_.data();
-      BrickCoord* coords = coords_.data();
-      std::uint64_t *keys = keys_.data(), *gkeys = group_keys_.data();
-      int *values = values_.data(), *gvalues = group_values_.data(), *todo = todo_.data();
-      const std::uint32_t mask = std::uint32_t(keys_.size() - 1);
-      const int base = allocated_;
-      par::ForEach(par::Gpu{}, allowed, [=] __device__(int i) {
-        const std::uint64_t k = sorted[i];
-        BrickCoord c;
-        DecodeBrickKey(k, &c.x, &c.y, &c.z);
-        coords[base + i] = c;
-        InsertKey(keys, values, mask, k, base + i);
-        InsertKey(gkeys, gvalues, mask, GroupKey(c.x, c.y, c.z), 1);
-        todo[atomicAdd(counts + 2, 1)] = base + i;
-      });
-      std::vector<BrickCoord> added(static_cast<std::size_t>(allowed));
-      cuda::CopyDeviceToHost(added.data(), coords_.data() + base, added.size() * sizeof(BrickCoord));
-      Extend(added.data(), allowed);
-      // Bricks that had moved to host memory come back into their new slots.
-      if (!host_.empty()) {
-        std::vector<std::uint64_t> keys(static_cast<std::size_t>(allowed));
-        cuda::CopyDeviceToHost(keys.data(), fresh_sorted_.data(), keys.size() * sizeof(std::uint64_t));
-        const std::size_t B = 512 * std::size_t(vbytes_);
-        for (int i = 0; i < allowed; ++i) {
-          const auto it = host_.find(keys[std::size_t(i)]);
-          if (it == host_.end()) continue;
-          cuda::CopyHostToDevice(pool_.data() + std::size_t(base + i) * B, it->second.data(), B);
-          host_dirty_.erase(it->first);
-          host_.erase(it);
-          host_bytes_ -= B + sizeof(std::uint64_t);
-          ++swapped_in_;
-        }
-      }
-      allocated_ += allowed;
-      if (gpu_budget > 0) last_seen_.resize(std::size_t(allocated_), frame_);
-    }
-  }
-  last_visible_ = n[2] + allowed;
-  if (last_visible_ > 0) {
-    std::uint8_t* dirty = dirty_.data();
-    const int* todo = todo_.data();
-    par::ForEach(par::Gpu{}, last_visible_, [=] __device__(int i) { dirty[todo[i]] = 1; });
-  }
+  last_visible_ = n[2] + PlaceOnHost(n[1]);
   // 4. One block of 512 threads per visible allocated brick.
+  integrate_from(0);
+}
+
+bool DeviceVolume::Settle(cudaEvent_t after) {
+  if (!pending_) return false;
+  pending_ = false;
+  HDRF_CUDA_CHECK(cudaEventSynchronize(counted_));
+  const int* c = counts_host_;
+  ReadBoxFrom(c + kBoxAt);
+  if (!c[3]) {
+    allocated_ += c[4];
+    last_visible_ = c[2];
+    return false;
+  }
+  // The device left the new bricks (more than it places at once, or than the pool had room
+  // for); the visible bricks the model had are fused. The new ones are placed and fused now.
+  const int todo = c[2];
+  if (after) HDRF_CUDA_CHECK(cudaStreamWaitEvent(0, after, 0));
+  const int placed = PlaceOnHost(c[1]);
+  last_visible_ = todo + placed;
+  if (placed == 0) return false;
   VisitEncoding(options().encoding, [&](auto tag) {
-    IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
-                                   counts_.data());
+    IntegrateBricks<decltype(tag)>(pending_args_, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(),
+                                   todo_.data(), counts_.data(), todo, dirty_.data());
   });
-  mirror_fresh_ = false;
+  return true;
+}
+
+void DeviceVolume::ReadBoxFrom(const int* b) {
+  box_ = {};
+  if (b[0] > b[3]) return;
+  box_.empty = false;
+  for (std::size_t k = 0; k < 3; ++k) box_.lo[k] = b[k], box_.hi[k] = b[3 + k];
+}
+
+int DeviceVolume::PlaceOnHost(int wanted) {
+  if (wanted <= 0 || !full_reason_.empty()) return 0;
+  const int gpu_budget = int(options().gpu_bricks());
+  std::size_t bytes = temp_.size();
+  if (wanted <= kRankSortMost) {
+    RankSortKernel<<<1, (wanted + 31) / 32 * 32>>>(fresh_.data(), wanted, fresh_sorted_.data());
+    HDRF_CUDA_CHECK_LAUNCH();
+  } else {
+    HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(temp_.data(), bytes, fresh_.data(), fresh_sorted_.data(), wanted));
+  }
+  int allowed = std::min<int>(wanted, int(mirror_.max_bricks()) - int(allocated_bricks()));
+  if (allowed < wanted)
+    full_reason_ = "the model reached its memory budget of " + std::to_string(long(options().max_memory_mb)) +
+                   " MiB (volume.max_memory_mb): " + std::to_string(mirror_.max_bricks()) + " bricks";
+  if (gpu_budget > 0 && allocated_ + allowed > gpu_budget) {
+    allowed = std::max(0, gpu_budget - allocated_);
+    if (full_reason_.empty())
+      full_reason_ = "one view needs more bricks than the GPU budget of " +
+                     std::to_string(long(options().gpu_memory_mb)) + " MiB holds (volume.gpu_memory_mb: " +
+                     std::to_string(gpu_budget) + " bricks)";
+  }
+  if (allowed > 0 && !Reserve(allocated_ + allowed)) allowed = std::max(0, capacity_ - allocated_);
+  if (allowed <= 0) return 0;
+  const int base = allocated_;
+  PlaceSorted(fresh_sorted_.data(), allowed, base,
+              PlaceTables{keys_.data(), group_keys_.data(), values_.data(), group_values_.data(),
+                          std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()},
+              counts_.data(), counts_.data() + kBoxAt);
+  std::vector<BrickCoord> added(static_cast<std::size_t>(allowed));
+  cuda::CopyDeviceToHost(added.data(), coords_.data() + base, added.size() * sizeof(BrickCoord));
+  Extend(added.data(), allowed);
+  // Bricks that had moved to host memory come back into their new slots.
+  if (!host_.empty()) {
+    std::vector<std::uint64_t> host_keys(static_cast<std::size_t>(allowed));
+    cuda::CopyDeviceToHost(host_keys.data(), fresh_sorted_.data(), host_keys.size() * sizeof(std::uint64_t));
+    const std::size_t B = 512 * std::size_t(vbytes_);
+    for (int i = 0; i < allowed; ++i) {
+      const auto it = host_.find(host_keys[std::size_t(i)]);
+      if (it == host_.end()) continue;
+      cuda::CopyHostToDevice(pool_.data() + std::size_t(base + i) * B, it->second.data(), B);
+      host_dirty_.erase(it->first);
+      host_.erase(it);
+      host_bytes_ -= B + sizeof(std::uint64_t);
+      ++swapped_in_;
+    }
+  }
+  allocated_ += allowed;
+  if (gpu_budget > 0) last_seen_.resize(std::size_t(allocated_), frame_);
+  return allowed;
 }
 
 int DeviceVolume::SplitVisible(int* n) {
@@ -376,6 +504,7 @@ void DeviceVolume::SwapOut(int count) {
 }
 
 std::size_t DeviceVolume::gpu_bytes() const {
+  Settled();
   return (keys_.size() + group_keys_.size()) * (sizeof(std::uint64_t) + sizeof(int)) +
          std::size_t(capacity_) * 512 * std::size_t(vbytes_);
 }
@@ -389,6 +518,7 @@ void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out, cuda
 }
 
 const Volume& DeviceVolume::Download() {
+  Settled();
   if (mirror_fresh_) return mirror_;
   std::vector<std::uint8_t> pool(std::size_t(allocated_) * 512 * std::size_t(vbytes_));
   std::vector<BrickCoord> bc(static_cast<std::size_t>(allocated_));
@@ -417,6 +547,7 @@ const Volume& DeviceVolume::Download() {
 }
 
 void DeviceVolume::Upload(const Volume& v) {
+  Settled();
   const int n = int(v.allocated_bricks());
   // With a GPU budget the model may not fit: the bricks allocated last (nearest the end of
   // the scan, where it goes on) go to the GPU, the earlier ones to host memory.
@@ -450,6 +581,7 @@ void DeviceVolume::Upload(const Volume& v) {
   }
   box_ = {};
   if (n > 0) Extend(all.data(), n);
+  WriteBox();
   allocated_ = on_gpu;
   frame_ = 0;
   last_seen_.assign(std::size_t(on_gpu), 0);
@@ -460,6 +592,7 @@ void DeviceVolume::Upload(const Volume& v) {
 }
 
 BrickSet DeviceVolume::CopyChanged() {
+  Settled();
   BrickSet out;
   const std::size_t B = 512 * std::size_t(vbytes_);
   std::vector<int> slots;
@@ -503,7 +636,17 @@ void DeviceVolume::Extend(const BrickCoord* c, int n) {
   for (int i = 0; i < n; ++i) box_.Add(c[i].x, c[i].y, c[i].z);
 }
 
+void DeviceVolume::WriteBox() {
+  int b[6];
+  for (std::size_t k = 0; k < 3; ++k) {
+    b[k] = box_.empty ? std::numeric_limits<int>::max() : box_.lo[k];
+    b[3 + k] = box_.empty ? std::numeric_limits<int>::min() : box_.hi[k];
+  }
+  cuda::CopyHostToDevice(counts_.data() + kBoxAt, b, sizeof b);
+}
+
 std::array<Float3, 2> DeviceVolume::Bounds() const {
+  Settled();
   if (allocated_ == 0) return {Float3{0, 0, 0}, Float3{0, 0, 0}};
   return box_.World(options().voxel_m * kBrick);
 }

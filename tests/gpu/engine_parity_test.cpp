@@ -5,6 +5,8 @@
 #include <chrono>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -387,6 +389,66 @@ TEST(GpuParity, StagesNotTimedGiveTheSameScan) {
   EXPECT_EQ(untimed_ms, 0);
   const FrameViews va = timed.DownloadViews(), vb = untimed.DownloadViews();
   EXPECT_EQ(CompareF(va.render.depth, vb.render.depth).share, 0);
+}
+
+// A frame's new bricks are placed on the device (up to a block's worth, the frame queued
+// without a wait) or, beyond that, by the host once the frame is settled, after its ray cast
+// was queued (which is then cast again). Any limit gives the same scan bit for bit: poses,
+// exposure, brick counts, the last rendering and the model. With a limit of 37 both ways
+// are taken (frames with 1-37 new bricks and frames with more).
+TEST(GpuParity, NewBricksPlacedOnTheDeviceOrByTheHostGiveTheSameScan) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const int w = 320, h = 240, n = 60;
+  const auto frames = Frames(n, w, h, 3);
+  const SensorInfo s = Sensor(w, h);
+  PipelineOptions o;
+  o.device = Device::kCuda;
+  struct Scan {
+    std::vector<FrameReport> reports;
+    FrameViews views;
+    std::vector<std::array<int, 3>> bricks;
+    std::vector<std::uint8_t> pool;
+  };
+  auto scan = [&](int limit) {
+    volume::SetDevicePlaceLimit(limit);
+    Pipeline p(o, s.camera, s);
+    p.set_stage_timing(false);
+    Scan out;
+    for (int k = 0; k < n; ++k) out.reports.push_back(p.Process(frames[std::size_t(k)]));
+    out.views = p.DownloadViews();
+    const volume::Volume& model = p.DownloadVolume();
+    out.bricks = model.bricks();
+    out.pool.assign(model.pool().begin(), model.pool().end());
+    volume::SetDevicePlaceLimit(-1);  // (the default again)
+    return out;
+  };
+  const Scan ref = scan(0);
+  int small = 0, large = 0;
+  for (int k = 1; k < n; ++k) {
+    const long added = long(ref.reports[std::size_t(k)].allocated_bricks) - long(ref.reports[std::size_t(k - 1)].allocated_bricks);
+    small += added > 0 && added <= 37;
+    large += added > 37;
+  }
+  std::printf("new bricks a frame: %d frames 1-37, %d more (first frame %zu)\n", small, large,
+              ref.reports[0].allocated_bricks);
+  EXPECT_GT(small, 5);
+  EXPECT_GT(large, 0);
+  for (const int limit : {37, 1024}) {
+    const Scan v = scan(limit);
+    int differ = 0;
+    for (int k = 0; k < n; ++k) {
+      const FrameReport &a = ref.reports[std::size_t(k)], &b = v.reports[std::size_t(k)];
+      differ += a.T_world_camera.matrix() != b.T_world_camera.matrix() || a.exposure_ratio != b.exposure_ratio ||
+                a.allocated_bricks != b.allocated_bricks || a.fused != b.fused;
+    }
+    EXPECT_EQ(differ, 0) << "limit " << limit;
+    EXPECT_EQ(CompareF(ref.views.render.depth, v.views.render.depth).share, 0) << "limit " << limit;
+    EXPECT_EQ(Compare3(ref.views.render.radiance, v.views.render.radiance).share, 0) << "limit " << limit;
+    EXPECT_EQ(ref.bricks, v.bricks) << "limit " << limit;
+    EXPECT_TRUE(ref.pool == v.pool) << "limit " << limit;
+    std::printf("place limit %d: %d of %d frames differ; model %zu bricks\n", limit, differ, n, v.bricks.size());
+  }
 }
 
 // A CUDA scan stopped after 30 frames (its model downloaded, its resume point taken) and
