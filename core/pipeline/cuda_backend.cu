@@ -76,8 +76,8 @@ struct NrScratchD {
 
 template <typename T>
 void CopyD2D(DeviceImage<T>& dst, const DeviceImage<T>& src) {
-  HDRF_CUDA_CHECK(cudaMemcpy(dst.data(), src.data(), sizeof(T) * std::size_t(src.width()) * src.height(),
-                             cudaMemcpyDeviceToDevice));
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(dst.data(), src.data(), sizeof(T) * std::size_t(src.width()) * src.height(),
+                                  cudaMemcpyDeviceToDevice, 0));
 }
 
 class CudaBackend final : public Backend {
@@ -226,6 +226,7 @@ class CudaBackend final : public Backend {
     volume_.Raycast(a, render_.views(), side_.stream);
     HDRF_CUDA_CHECK(cudaEventRecord(side_.done, side_.stream));
     raycast_pending_ = true;
+    render_in_ref_ = false;
     raycast_unsettled_ = !volume_.settled();
     raycast_start_ = start;
     render_pose_ = T;
@@ -243,8 +244,14 @@ class CudaBackend final : public Backend {
   void ReferenceFromRender(const Float3& clip) override {
     WaitRaycast();
     valid_from_run_ = false;
-    CopyD2D(ref_[0]->vertex, render_.vertex);
-    CopyD2D(ref_[0]->normal, render_.normal);
+    // The ray cast's vertices and normals become the reference's finest level by exchanging
+    // the images, not by copying them: they are the rendering's too (RenderVertex) until the
+    // next ray cast, which writes into the pair the reference had.
+    if (!render_in_ref_) {
+      std::swap(ref_[0]->vertex, render_.vertex);
+      std::swap(ref_[0]->normal, render_.normal);
+      render_in_ref_ = true;
+    }
     NormalizeRender(clip);
     CopyD2D(ref_[0]->intensity, render_.nr);
     BuildReferencePyramid();
@@ -253,6 +260,11 @@ class CudaBackend final : public Backend {
   }
   void ReferenceFromLive(const Pose& T) override {
     valid_from_run_ = false;
+    if (render_in_ref_) {  // (the rendering keeps its images; the reference is written anew)
+      std::swap(ref_[0]->vertex, render_.vertex);
+      std::swap(ref_[0]->normal, render_.normal);
+      render_in_ref_ = false;
+    }
     const LiveLevelD& L0 = *live_[0];
     tracking::PlaceInWorldOnGpu(L0.vertex.view(), L0.normal.view(), ToRigidTransform(T), ref_[0]->vertex.view(),
                                 ref_[0]->normal.view());
@@ -311,7 +323,7 @@ class CudaBackend final : public Backend {
     if (which.depth) v.depth = depth_.ToHost();
     if (which.render) {
       if (!render_nr_ready_) NormalizeRender(kNoClip);
-      v.render = render_.ToHost();
+      v.render = RenderToHost();
     }
     return v;
   }
@@ -337,7 +349,7 @@ class CudaBackend final : public Backend {
       f.ref_normal.push_back(L->normal.ToHost());
       f.ref_intensity.push_back(L->intensity.ToHost());
     }
-    f.render = render_.ToHost();
+    f.render = RenderToHost();
     return f;
   }
 
@@ -345,7 +357,15 @@ class CudaBackend final : public Backend {
   // The exposure estimate's inputs: the last ray cast and the live frame (its transform comes
   // from the pose the estimate is made at).
   exposure::ExposureArgs ExposureViews() const {
-    return {render_.vertex.view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_, {}};
+    return {RenderVertex().view(), render_.radiance.view(), radiance_.view(), conf_track_.view(), cam_, {}};
+  }
+  // The last ray cast's vertices and normals: in render_, or in the reference's finest level
+  // since ReferenceFromRender (render_in_ref_).
+  const DeviceImage<Float3>& RenderVertex() const { return render_in_ref_ ? ref_[0]->vertex : render_.vertex; }
+  const DeviceImage<Float3>& RenderNormal() const { return render_in_ref_ ? ref_[0]->normal : render_.normal; }
+  volume::Volume::Rendering RenderToHost() const {
+    return {RenderVertex().ToHost(), RenderNormal().ToHost(), render_.radiance.ToHost(), render_.nr.ToHost(),
+            render_.depth.ToHost()};
   }
   // The model's host side after a queued Integrate (DeviceVolume::Settle). Where it fused
   // new bricks only now, a ray cast queued after the Integrate saw the model without them:
@@ -434,6 +454,7 @@ class CudaBackend final : public Backend {
   RenderD render_;
   Pose render_pose_ = Pose::Identity(), reference_pose_ = Pose::Identity();
   bool has_render_ = false, has_reference_ = false;
+  bool render_in_ref_ = false;  // the rendering's vertices and normals are ref_[0]'s (ReferenceFromRender)
   bool valid_from_run_ = false;  // LiveValid / ReferenceValid: the last tracker run's counts hold
   tracking::GpuNormalEquations sums_;
   exposure::GpuExposureEstimator exposure_;

@@ -125,8 +125,9 @@ class DeviceVolume {
   int vbytes_ = 0;
   DeviceBuffer<std::uint64_t> keys_, group_keys_;  // the hash tables (HashView's layout)
   DeviceBuffer<int> values_, group_values_;
-  DeviceBuffer<std::uint64_t> frame_set_;           // per-frame set of visible brick keys
+  DeviceBuffer<std::uint64_t> frame_set_;           // per-frame set of visible brick keys (empty between frames)
   DeviceBuffer<std::uint64_t> visible_, fresh_, fresh_sorted_;
+  DeviceBuffer<std::uint32_t> visible_at_;  // each visible key's slot in frame_set_
   DeviceBuffer<int> todo_;
   DeviceBuffer<int> counts_;  // kCounts: see above
   DeviceBuffer<std::uint8_t> temp_;

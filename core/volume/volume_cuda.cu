@@ -24,7 +24,9 @@ int place_limit = DeviceVolume::kPlaceMost;  // SetDevicePlaceLimit
 // changes while keys are inserted, so a slot seen holding a key holds it. (Hundreds of a
 // frame's depth rays name each brick at 2 cm voxels: an atomic on every visit queued them all
 // on one address.)
-__device__ bool InsertKey(std::uint64_t* keys, int* values, std::uint32_t mask, std::uint64_t key, int value) {
+// `at`, where given: the slot the key was put in.
+__device__ bool InsertKey(std::uint64_t* keys, int* values, std::uint32_t mask, std::uint64_t key, int value,
+                          std::uint32_t* at = nullptr) {
   std::uint32_t h = HashBrickKey(key) & mask;
   for (std::uint32_t probes = 0; probes <= mask; ++probes) {
     const ull seen = __ldcg(reinterpret_cast<const ull*>(keys + h));
@@ -36,6 +38,7 @@ __device__ bool InsertKey(std::uint64_t* keys, int* values, std::uint32_t mask, 
     const ull prev = atomicCAS(reinterpret_cast<ull*>(keys + h), ull(kEmptyKey), ull(key));
     if (prev == ull(kEmptyKey)) {
       if (values) values[h] = value;
+      if (at) *at = h;
       return true;
     }
     if (prev == ull(key)) return false;
@@ -92,11 +95,14 @@ void InsertAll(std::uint64_t* keys, int* values, std::uint64_t* gkeys, int* gval
 }
 
 // Visible keys the table has go to the to-do list (their slots), the others to `fresh`;
-// `capacity` threads, the first counts[0] of which have a key.
-void SplitKeys(HashView table, const std::uint64_t* visible, int capacity, int* counts, std::uint64_t* fresh, int* todo) {
+// `capacity` threads, the first counts[0] of which have a key. Each key's entry in the
+// frame's set (its slot there: `at`) is emptied for the next frame.
+void SplitKeys(HashView table, const std::uint64_t* visible, int capacity, int* counts, std::uint64_t* fresh, int* todo,
+               std::uint64_t* set, const std::uint32_t* at) {
   par::ForEach(par::Gpu{}, capacity, [=] __device__(int i) {
     if (i >= counts[0]) return;
     const std::uint64_t k = visible[i];
+    set[at[i]] = kEmptyKey;
     const int slot = table.Find(k);
     if (slot >= 0) todo[atomicAdd(counts + 2, 1)] = slot;
     else fresh[atomicAdd(counts + 1, 1)] = k;
@@ -277,18 +283,21 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
   const std::size_t most = std::size_t(rw) * std::size_t(rh) * std::size_t(MaxBricksAlongRay(a.trunc_m, a.voxel_m));
   if (visible_.size() < most) {
     visible_ = DeviceBuffer<std::uint64_t>(most);
+    visible_at_ = DeviceBuffer<std::uint32_t>(most);
     fresh_ = DeviceBuffer<std::uint64_t>(most);
     fresh_sorted_ = DeviceBuffer<std::uint64_t>(most);
     todo_ = DeviceBuffer<int>(most);
     frame_set_ = DeviceBuffer<std::uint64_t>(PowerOfTwoAtLeast(2 * most));
+    // Empty once: each frame empties the entries it filled (SplitKeys).
+    HDRF_CUDA_CHECK(cudaMemsetAsync(frame_set_.data(), 0xff, frame_set_.size() * sizeof(std::uint64_t), 0));
     std::size_t sort_bytes = 0;
     HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, fresh_.data(), fresh_sorted_.data(), int(most)));
     temp_ = DeviceBuffer<std::uint8_t>(std::max(sort_bytes, std::size_t(16)));
   }
-  HDRF_CUDA_CHECK(cudaMemset(frame_set_.data(), 0xff, frame_set_.size() * sizeof(std::uint64_t)));
-  HDRF_CUDA_CHECK(cudaMemset(counts_.data(), 0, kBoxAt * sizeof(int)));
+  HDRF_CUDA_CHECK(cudaMemsetAsync(counts_.data(), 0, kBoxAt * sizeof(int), 0));
   std::uint64_t* set = frame_set_.data();
   std::uint64_t* visible = visible_.data();
+  std::uint32_t* visible_at = visible_at_.data();
   int* counts = counts_.data();
   const std::uint32_t set_mask = std::uint32_t(frame_set_.size() - 1);
   const RigidTransform Twc = ToRigidTransform(T);
@@ -298,7 +307,12 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
       const std::uint64_t k = BrickKey(bx, by, bz);
       if (k == last) return;
       last = k;
-      if (InsertKey(set, nullptr, set_mask, k, 0)) visible[atomicAdd(counts, 1)] = k;
+      std::uint32_t at = 0;
+      if (InsertKey(set, nullptr, set_mask, k, 0, &at)) {
+        const int i = atomicAdd(counts, 1);
+        visible[i] = k;
+        visible_at[i] = at;
+      }
     });
   });
   ++frame_;
@@ -317,7 +331,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
                              int(mirror_.max_bricks()) - allocated_});
   if (gpu_budget <= 0 && host_.empty() && full_reason_.empty() && room > 0) {
     SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(),
-              int(visible_.size()), counts_.data(), fresh_.data(), todo_.data());
+              int(visible_.size()), counts_.data(), fresh_.data(), todo_.data(), frame_set_.data(), visible_at_.data());
     const PlaceTables t{keys_.data(), group_keys_.data(), values_.data(), group_values_.data(),
                         std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()};
     PlaceNewKernel<<<1, kPlaceMost>>>(fresh_.data(), room, allocated_, t, counts_.data(), counts_.data() + kBoxAt);
@@ -441,7 +455,7 @@ int DeviceVolume::SplitVisible(int* n) {
   HDRF_CUDA_CHECK(cudaMemset(counts_.data() + 1, 0, 2 * sizeof(int)));
   // Over the list's capacity: the kernel reads the visible count on the device (no wait here).
   SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(),
-            int(visible_.size()), counts_.data(), fresh_.data(), todo_.data());
+            int(visible_.size()), counts_.data(), fresh_.data(), todo_.data(), frame_set_.data(), visible_at_.data());
   HDRF_CUDA_CHECK(cudaMemcpy(n, counts_.data(), 3 * sizeof(int), cudaMemcpyDeviceToHost));
   return n[0];
 }
