@@ -120,6 +120,12 @@ class CudaBackend final : public Backend {
                                   maxconf_.view());
     if (o_.depth.bilateral) imaging::BilateralFilterOnGpu(depth_raw_.view(), bilateral_.data(), depth_.view());
     else CopyD2D(depth_, depth_raw_);
+    // The ray cast's guide from this depth, made now beside the last frame's ray cast rather
+    // than on the way to this frame's (Raycast with kDepth takes it).
+    if (guide_next_.width() == 0)
+      guide_next_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
+    volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_next_.view());
+    guide_next_ready_ = true;
   }
 
   void Normalize() override {
@@ -208,8 +214,13 @@ class CudaBackend final : public Backend {
     exposure_ready_ = false;
     AfterRaycast();  // (its guide and rendering are rewritten; the model may still be settling)
     if (start == RaycastStart::kDepth) {
-      if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
-      volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_.view());
+      if (guide_next_ready_) {  // (made from the same depth in Convert)
+        std::swap(guide_, guide_next_);
+        guide_next_ready_ = false;
+      } else {
+        if (guide_.width() == 0) guide_ = DeviceImage<float>(volume::GuideTiles(cam_.width), volume::GuideTiles(cam_.height));
+        volume::RaycastGuideOnGpu(depth_.view(), o_.volume.truncation_m(), guide_.view());
+      }
       guided_ = true;
     } else if (start == RaycastStart::kNear) {
       guided_ = false;
@@ -225,6 +236,7 @@ class CudaBackend final : public Backend {
     HDRF_CUDA_CHECK(cudaStreamWaitEvent(side_.stream, side_.ready, 0));
     volume_.Raycast(a, render_.views(), side_.stream);
     HDRF_CUDA_CHECK(cudaEventRecord(side_.done, side_.stream));
+    volume_.QueueCounts();  // (a queued Integrate's counts, read back beside the ray cast)
     raycast_pending_ = true;
     render_in_ref_ = false;
     raycast_unsettled_ = !volume_.settled();
@@ -443,6 +455,8 @@ class CudaBackend final : public Backend {
   DeviceImage<Rgb8> color_;
   DeviceImage<float> depth_raw_, depth_, conf_, maxconf_, lum_, nr_, lum_render_;
   DeviceImage<float> guide_;  // the ray cast's start guide (RaycastGuide), used while guided_
+  DeviceImage<float> guide_next_;  // the guide from the last converted frame's depth, while guide_next_ready_
+  bool guide_next_ready_ = false;
   bool guided_ = false;
   DeviceImage<float> conf_track_;  // the confidence, 0 where a channel is clipped (tracking, exposure)
   bool render_nr_ready_ = false;  // render_.nr holds the ray cast's NR for render_nr_clip_

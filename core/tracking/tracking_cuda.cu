@@ -366,11 +366,13 @@ void GpuNormalEquations::QueueRun(const std::vector<Level>& levels, const Pose& 
   const int blocks = limit > 0 ? std::min(limit, m.blocks) : m.blocks;
   HDRF_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(&RunKernel), dim3(blocks), dim3(kThreads),
                                               args, 0, nullptr));
-  HDRF_CUDA_CHECK(cudaMemcpyAsync(&m.host->run, &d->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, nullptr));
 }
 
 GaussNewtonRun GpuNormalEquations::FinishRun() {
   Impl& m = *impl_;
+  // The run's state read back behind whatever was queued after the run (the exposure estimate
+  // at its pose starts as soon as the run ends).
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(&m.host->run, &m.track.data()->run, sizeof(DeviceRun), cudaMemcpyDeviceToHost, nullptr));
   HDRF_CUDA_CHECK(cudaStreamSynchronize(nullptr));
   const DeviceRun& r = m.host->run;
   GaussNewtonRun run;

@@ -50,6 +50,10 @@ class DeviceVolume {
   // them waits for `after` first (that ray cast's end, which reads the tables it changes).
   bool Settle(cudaEvent_t after = nullptr);
   bool settled() const { return !pending_; }
+  // Queues the read-back of the last Integrate's counts (Settle does, where not yet queued):
+  // the caller queues it after the work that should not wait for the copy (the ray cast's
+  // start).
+  void QueueCounts();
   // Ray casts into device images (the shared driver, raycast_driver.h), on `stream`.
   void Raycast(const RaycastArgs& a, const RenderingViews& out, cudaStream_t stream = nullptr) const;
   // The box of the allocated bricks on the device (brick coordinates: low x, y, z, high x, y,
@@ -118,6 +122,7 @@ class DeviceVolume {
   int* counts_host_ = nullptr;      // pinned: counts_ read back behind a queued Integrate
   cudaEvent_t counted_ = nullptr;   // ... there
   bool pending_ = false;            // an Integrate queued, not settled
+  bool counts_queued_ = false;      // ... its counts' read-back queued (QueueCounts)
   IntegrateArgs pending_args_{};    // its frame (Settle fuses the bricks the device left)
 
   Volume mirror_;  // options and limits; the host copy on request

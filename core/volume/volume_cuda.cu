@@ -215,7 +215,7 @@ DeviceVolume::DeviceVolume(const VolumeOptions& o) : mirror_(o), vbytes_(Encodin
 }
 
 DeviceVolume::~DeviceVolume() {
-  if (pending_) cudaEventSynchronize(counted_);
+  if (pending_) cudaStreamSynchronize(0);
   cudaEventDestroy(counted_);
   cudaFreeHost(counts_host_);
 }
@@ -337,10 +337,9 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
     PlaceNewKernel<<<1, kPlaceMost>>>(fresh_.data(), room, allocated_, t, counts_.data(), counts_.data() + kBoxAt);
     HDRF_CUDA_CHECK_LAUNCH();
     integrate_from(0);
-    HDRF_CUDA_CHECK(cudaMemcpyAsync(counts_host_, counts_.data(), kCounts * sizeof(int), cudaMemcpyDeviceToHost, 0));
-    HDRF_CUDA_CHECK(cudaEventRecord(counted_, 0));
     pending_args_ = a;
     pending_ = true;
+    counts_queued_ = false;  // (QueueCounts: behind the next ray cast's start, or in Settle)
     return;
   }
   // 2. Split into bricks the model has (straight to the to-do list) and new ones. With a GPU
@@ -368,8 +367,16 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
   integrate_from(0);
 }
 
+void DeviceVolume::QueueCounts() {
+  if (!pending_ || counts_queued_) return;
+  HDRF_CUDA_CHECK(cudaMemcpyAsync(counts_host_, counts_.data(), kCounts * sizeof(int), cudaMemcpyDeviceToHost, 0));
+  HDRF_CUDA_CHECK(cudaEventRecord(counted_, 0));
+  counts_queued_ = true;
+}
+
 bool DeviceVolume::Settle(cudaEvent_t after) {
   if (!pending_) return false;
+  QueueCounts();
   pending_ = false;
   HDRF_CUDA_CHECK(cudaEventSynchronize(counted_));
   const int* c = counts_host_;
