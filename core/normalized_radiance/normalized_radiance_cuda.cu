@@ -6,13 +6,32 @@
 namespace hdrf::nr {
 
 namespace {
-// One block per row stages the row in shared memory (coalesced); three threads of a warp run
-// NrRowPass's sequential sums, one sum each (the count, the values, their squares: the same
-// additions in the same order), in step; all threads write back. Each summing thread reads
-// kRowAhead cells into registers before it adds them: read one at a time between its stores
-// to shared memory (which the compiler must assume may be the cells), each cell waited for
-// the shared memory's latency (18 us a row pass at 640x480 on an H100).
+// One block per row stages the row in shared memory (coalesced); three warps run NrRowPass's
+// sequential sums, one sum each (the count, the values, their squares: the same additions in
+// the same order), one thread of each, each warp with only its own sum's instructions (as
+// three threads of one warp, each element's three terms were chosen between in step); all
+// threads write back. Each summing thread reads kRowAhead cells into registers before it adds
+// them: read one at a time between its stores to shared memory (which the compiler must
+// assume may be the cells), each cell waited for the shared memory's latency (18 us a row
+// pass at 640x480 on an H100).
 constexpr int kRowAhead = 16;
+template <int kWhich>  // 0: the count of cells with a value, 1: the values, 2: their squares
+__device__ void RowSums(const float* m, int sw, double* out) {
+  double acc = 0;
+  out[0] = 0;
+  for (int x0 = 0; x0 < sw; x0 += kRowAhead) {
+    float c[kRowAhead];
+#pragma unroll
+    for (int k = 0; k < kRowAhead; ++k) c[k] = x0 + k < sw ? m[x0 + k] : 0.f;
+#pragma unroll
+    for (int k = 0; k < kRowAhead; ++k) {
+      if (x0 + k >= sw) break;
+      const double v = c[k];
+      acc += kWhich == 0 ? (v > 0 ? 1.0 : 0.0) : kWhich == 1 ? v : v * v;
+      out[x0 + k + 1] = acc;
+    }
+  }
+}
 __global__ void RowPassKernel(ImageView<const float> cells, NrIntegrals in) {
   extern __shared__ double smem[];
   const int sw = cells.width, y = blockIdx.x;
@@ -21,24 +40,12 @@ __global__ void RowPassKernel(ImageView<const float> cells, NrIntegrals in) {
   float* m = reinterpret_cast<float*>(smem + 3 * (sw + 1));
   for (int x = threadIdx.x; x < sw; x += blockDim.x) m[x] = cells(x, y);
   __syncthreads();
-  if (threadIdx.x < 3) {
-    const int which = threadIdx.x;
+  if (threadIdx.x % 32 == 0) {
+    const int which = int(threadIdx.x) / 32;  // (the same for the whole warp)
     double* out = smem + which * (sw + 1);
-    double acc = 0;
-    out[0] = 0;
-    for (int x0 = 0; x0 < sw; x0 += kRowAhead) {
-      float c[kRowAhead];
-#pragma unroll
-      for (int k = 0; k < kRowAhead; ++k) c[k] = x0 + k < sw ? m[x0 + k] : 0.f;
-#pragma unroll
-      for (int k = 0; k < kRowAhead; ++k) {
-        if (x0 + k >= sw) break;
-        const double v = c[k];
-        const double v2 = v * v;
-        acc += which == 0 ? (v > 0 ? 1.0 : 0.0) : which == 1 ? v : v2;
-        out[x0 + k + 1] = acc;
-      }
-    }
+    if (which == 0) RowSums<0>(m, sw, out);
+    else if (which == 1) RowSums<1>(m, sw, out);
+    else if (which == 2) RowSums<2>(m, sw, out);
   }
   __syncthreads();
   for (int x = threadIdx.x; x <= sw; x += blockDim.x) {
