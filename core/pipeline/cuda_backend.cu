@@ -259,11 +259,7 @@ class CudaBackend final : public Backend {
     // The ray cast's vertices and normals become the reference's finest level by exchanging
     // the images, not by copying them: they are the rendering's too (RenderVertex) until the
     // next ray cast, which writes into the pair the reference had.
-    if (!render_in_ref_) {
-      std::swap(ref_[0]->vertex, render_.vertex);
-      std::swap(ref_[0]->normal, render_.normal);
-      render_in_ref_ = true;
-    }
+    if (!render_in_ref_) ExchangeRenderAndReference();
     NormalizeRender(clip);
     CopyD2D(ref_[0]->intensity, render_.nr);
     BuildReferencePyramid();
@@ -272,11 +268,7 @@ class CudaBackend final : public Backend {
   }
   void ReferenceFromLive(const Pose& T) override {
     valid_from_run_ = false;
-    if (render_in_ref_) {  // (the rendering keeps its images; the reference is written anew)
-      std::swap(ref_[0]->vertex, render_.vertex);
-      std::swap(ref_[0]->normal, render_.normal);
-      render_in_ref_ = false;
-    }
+    if (render_in_ref_) ExchangeRenderAndReference();  // (the rendering keeps its images; the reference is written anew)
     const LiveLevelD& L0 = *live_[0];
     tracking::PlaceInWorldOnGpu(L0.vertex.view(), L0.normal.view(), ToRigidTransform(T), ref_[0]->vertex.view(),
                                 ref_[0]->normal.view());
@@ -375,6 +367,11 @@ class CudaBackend final : public Backend {
   // since ReferenceFromRender (render_in_ref_).
   const DeviceImage<Float3>& RenderVertex() const { return render_in_ref_ ? ref_[0]->vertex : render_.vertex; }
   const DeviceImage<Float3>& RenderNormal() const { return render_in_ref_ ? ref_[0]->normal : render_.normal; }
+  void ExchangeRenderAndReference() {
+    std::swap(ref_[0]->vertex, render_.vertex);
+    std::swap(ref_[0]->normal, render_.normal);
+    render_in_ref_ = !render_in_ref_;
+  }
   volume::Volume::Rendering RenderToHost() const {
     return {RenderVertex().ToHost(), RenderNormal().ToHost(), render_.radiance.ToHost(), render_.nr.ToHost(),
             render_.depth.ToHost()};

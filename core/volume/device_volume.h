@@ -112,6 +112,9 @@ class DeviceVolume {
   // Step 3 of Integrate on the host: the `wanted` new bricks (in fresh_) take slots up to
   // the limits, their to-do entries after those there are; the number placed.
   int PlaceOnHost(int wanted);
+  // The to-do list's bricks from entry `first` on (to its count on the device) fused.
+  void IntegrateFrom(const IntegrateArgs& a, int first);
+  void FillDefaultSlots(int first);  // pool slots [first, capacity_): fresh voxels
   void Settled() const;            // throws where an Integrate is not settled
   void ReadBoxFrom(const int* b);  // box_ from the device's layout (device_box)
   void WriteBox();                 // the device's box from box_

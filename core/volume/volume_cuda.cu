@@ -1,6 +1,6 @@
 // The model on the GPU (device_volume.h): brick allocation through a per-frame hash set and
 // the model's hash table, integration one block per brick, ray casting through the shared
-// driver.
+// driver. Moving bricks between the device and the host: volume_transfer_cuda.cu.
 #include <cub/device/device_radix_sort.cuh>
 
 #include <algorithm>
@@ -109,19 +109,6 @@ void SplitKeys(HashView table, const std::uint64_t* visible, int capacity, int* 
   });
 }
 
-// Bricks keep[0..kept) of a pool (words per brick: `words`) into slots 0..kept of another.
-void GatherBricks(const std::uint32_t* src, std::uint32_t* dst, const int* keep, long words, int kept,
-                  const BrickCoord* old_c, BrickCoord* new_c) {
-  par::ForEach(par::Gpu{}, kept, [=] __device__(int j) { new_c[j] = old_c[keep[j]]; });
-  for (long first = 0; first < long(kept) * words; first += long(1) << 30) {
-    const long n = std::min(long(kept) * words - first, long(1) << 30);
-    par::ForEach(par::Gpu{}, int(n), [=] __device__(int i) {
-      const long w = first + i;
-      dst[w] = src[long(keep[w / words]) * words + w % words];
-    });
-  }
-}
-
 std::size_t PowerOfTwoAtLeast(std::size_t n) {
   std::size_t c = 1024;
   while (c < n) c *= 2;
@@ -129,20 +116,22 @@ std::size_t PowerOfTwoAtLeast(std::size_t n) {
 }
 
 
-// A few keys sorted by rank in one block: each key's place is the number of keys before it
-// (smaller, or equal and earlier). The same order as the radix sort's, without its passes:
-// a frame's new bricks are mostly tens, where the radix sort took 13 us on an H100.
+// A key's place among k[0..n) (the i-th of them): the number of keys before it, smaller or
+// equal and earlier. The same order as the radix sort's, without its passes: a frame's new
+// bricks are mostly tens, where the radix sort took 13 us on an H100.
+__device__ int RankOf(const std::uint64_t* k, int n, int i) {
+  const std::uint64_t v = k[i];
+  int rank = 0;
+  for (int j = 0; j < n; ++j) rank += (k[j] < v || (k[j] == v && j < i)) ? 1 : 0;
+  return rank;
+}
+// A few keys sorted by rank in one block.
 constexpr int kRankSortMost = 1024;
 __global__ void __launch_bounds__(kRankSortMost) RankSortKernel(const std::uint64_t* in, int n, std::uint64_t* out) {
   __shared__ std::uint64_t k[kRankSortMost];
   for (int i = threadIdx.x; i < n; i += blockDim.x) k[i] = in[i];
   __syncthreads();
-  for (int i = threadIdx.x; i < n; i += blockDim.x) {
-    const std::uint64_t v = k[i];
-    int rank = 0;
-    for (int j = 0; j < n; ++j) rank += (k[j] < v || (k[j] == v && j < i)) ? 1 : 0;
-    out[rank] = v;
-  }
+  for (int i = threadIdx.x; i < n; i += blockDim.x) out[RankOf(k, n, i)] = k[i];
 }
 
 // A frame's new bricks (counts[1] of them in `fresh`) placed without the host: each takes
@@ -156,6 +145,15 @@ struct PlaceTables {
   BrickCoord* coords;
   int* todo;
 };
+// A new brick into `slot`: its coordinates, the brick and group tables, the box.
+__device__ void PlaceBrick(const PlaceTables& t, std::uint64_t key, int slot, int* box) {
+  BrickCoord c;
+  DecodeBrickKey(key, &c.x, &c.y, &c.z);
+  t.coords[slot] = c;
+  InsertKey(t.keys, t.values, t.mask, key, slot);
+  InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
+  AddToBox(box, c);
+}
 __global__ void __launch_bounds__(DeviceVolume::kPlaceMost)
     PlaceNewKernel(const std::uint64_t* fresh, int room, int base, PlaceTables t, int* counts, int* box) {
   __shared__ std::uint64_t k[DeviceVolume::kPlaceMost];
@@ -167,17 +165,9 @@ __global__ void __launch_bounds__(DeviceVolume::kPlaceMost)
   if (i < n) k[i] = fresh[i];
   __syncthreads();
   if (i < n) {
-    const std::uint64_t v = k[i];
-    int rank = 0;
-    for (int j = 0; j < n; ++j) rank += (k[j] < v || (k[j] == v && j < i)) ? 1 : 0;
-    BrickCoord c;
-    DecodeBrickKey(v, &c.x, &c.y, &c.z);
-    const int slot = base + rank;
-    t.coords[slot] = c;
-    InsertKey(t.keys, t.values, t.mask, v, slot);
-    InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
-    t.todo[first_todo + rank] = slot;
-    AddToBox(box, c);
+    const int rank = RankOf(k, n, i);
+    PlaceBrick(t, k[i], base + rank, box);
+    t.todo[first_todo + rank] = base + rank;
   }
   __syncthreads();  // (every thread has read counts[2])
   if (i == 0) {
@@ -190,14 +180,8 @@ __global__ void __launch_bounds__(DeviceVolume::kPlaceMost)
 // device, or with a GPU budget); their to-do entries after those there are (counts[2]).
 void PlaceSorted(const std::uint64_t* sorted, int n, int base, PlaceTables t, int* counts, int* box) {
   par::ForEach(par::Gpu{}, n, [=] __device__(int i) {
-    const std::uint64_t k = sorted[i];
-    BrickCoord c;
-    DecodeBrickKey(k, &c.x, &c.y, &c.z);
-    t.coords[base + i] = c;
-    InsertKey(t.keys, t.values, t.mask, k, base + i);
-    InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
+    PlaceBrick(t, sorted[i], base + i, box);
     t.todo[atomicAdd(counts + 2, 1)] = base + i;
-    AddToBox(box, c);
   });
 }
 }  // namespace
@@ -268,10 +252,8 @@ bool DeviceVolume::Reserve(int want) {
   pool_ = std::move(pool);
   coords_ = std::move(coords);
   dirty_ = std::move(dirty);
-  const long first = long(allocated_) * 512, count = long(cap) * 512 - first;
-  VisitEncoding(options().encoding,
-                [&](auto tag) { FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), first, count); });
   capacity_ = cap;
+  FillDefaultSlots(allocated_);
   return true;
 }
 
@@ -318,12 +300,6 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
   ++frame_;
   mirror_fresh_ = false;
   const int gpu_budget = int(options().gpu_bricks());
-  auto integrate_from = [&](int first) {
-    VisitEncoding(options().encoding, [&](auto tag) {
-      IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
-                                     counts_.data(), first, dirty_.data());
-    });
-  };
   // 2-4 queued without a wait where the device can place the new bricks: up to a block's
   // worth, within the pool's room, the tables' half and the memory limit; no GPU budget (its
   // bookkeeping is the host's). Settle reads the counts (or places what the device could not).
@@ -336,7 +312,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
                         std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()};
     PlaceNewKernel<<<1, kPlaceMost>>>(fresh_.data(), room, allocated_, t, counts_.data(), counts_.data() + kBoxAt);
     HDRF_CUDA_CHECK_LAUNCH();
-    integrate_from(0);
+    IntegrateFrom(a, 0);
     pending_args_ = a;
     pending_ = true;
     counts_queued_ = false;  // (QueueCounts: behind the next ray cast's start, or in Settle)
@@ -364,7 +340,7 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
   // 3. New bricks take the next slots in key order (as on the CPU), up to the limits.
   last_visible_ = n[2] + PlaceOnHost(n[1]);
   // 4. One block of 512 threads per visible allocated brick.
-  integrate_from(0);
+  IntegrateFrom(a, 0);
 }
 
 void DeviceVolume::QueueCounts() {
@@ -393,11 +369,21 @@ bool DeviceVolume::Settle(cudaEvent_t after) {
   const int placed = PlaceOnHost(c[1]);
   last_visible_ = todo + placed;
   if (placed == 0) return false;
-  VisitEncoding(options().encoding, [&](auto tag) {
-    IntegrateBricks<decltype(tag)>(pending_args_, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(),
-                                   todo_.data(), counts_.data(), todo, dirty_.data());
-  });
+  IntegrateFrom(pending_args_, todo);
   return true;
+}
+
+void DeviceVolume::IntegrateFrom(const IntegrateArgs& a, int first) {
+  VisitEncoding(options().encoding, [&](auto tag) {
+    IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
+                                   counts_.data(), first, dirty_.data());
+  });
+}
+
+void DeviceVolume::FillDefaultSlots(int first) {
+  VisitEncoding(options().encoding, [&](auto tag) {
+    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(first) * 512, long(capacity_ - first) * 512);
+  });
 }
 
 void DeviceVolume::ReadBoxFrom(const int* b) {
@@ -467,63 +453,6 @@ int DeviceVolume::SplitVisible(int* n) {
   return n[0];
 }
 
-void DeviceVolume::SwapOut(int count) {
-  // The bricks seen longest ago, none of this frame's.
-  std::vector<int> order;
-  for (int s = 0; s < allocated_; ++s)
-    if (last_seen_[std::size_t(s)] < frame_) order.push_back(s);
-  count = std::min<int>(count, int(order.size()));
-  if (count <= 0) return;
-  std::nth_element(order.begin(), order.begin() + (count - 1), order.end(), [&](int a, int b) {
-    return last_seen_[std::size_t(a)] != last_seen_[std::size_t(b)] ? last_seen_[std::size_t(a)] < last_seen_[std::size_t(b)]
-                                                                     : a < b;
-  });
-  std::vector<char> out(static_cast<std::size_t>(allocated_), 0);
-  for (int i = 0; i < count; ++i) out[std::size_t(order[std::size_t(i)])] = 1;
-  std::vector<BrickCoord> coords(static_cast<std::size_t>(allocated_));
-  cuda::CopyDeviceToHost(coords.data(), coords_.data(), coords.size() * sizeof(BrickCoord));
-  std::vector<std::uint8_t> dirty(static_cast<std::size_t>(allocated_));
-  cuda::CopyDeviceToHost(dirty.data(), dirty_.data(), dirty.size());
-  const std::size_t B = 512 * std::size_t(vbytes_);
-  std::vector<int> keep;
-  std::vector<int> seen;
-  for (int s = 0; s < allocated_; ++s) {
-    if (out[std::size_t(s)]) {
-      std::vector<std::uint8_t> voxels(B);
-      cuda::CopyDeviceToHost(voxels.data(), pool_.data() + std::size_t(s) * B, B);
-      const BrickCoord& c = coords[std::size_t(s)];
-      host_[BrickKey(c.x, c.y, c.z)] = std::move(voxels);
-      if (dirty[std::size_t(s)]) host_dirty_.insert(BrickKey(c.x, c.y, c.z));
-      host_bytes_ += B + sizeof(std::uint64_t);
-    } else {
-      keep.push_back(s);
-      seen.push_back(last_seen_[std::size_t(s)]);
-    }
-  }
-  // The kept bricks, in slot order, into a fresh pool; the rest of it default voxels.
-  DeviceBuffer<int> keep_d{std::max<std::size_t>(keep.size(), 1)};
-  if (!keep.empty()) cuda::CopyHostToDevice(keep_d.data(), keep.data(), keep.size() * sizeof(int));
-  DeviceBuffer<std::uint8_t> pool{std::size_t(capacity_) * B};
-  DeviceBuffer<BrickCoord> moved{std::size_t(capacity_)};
-  const int kept = int(keep.size());
-  GatherBricks(reinterpret_cast<const std::uint32_t*>(pool_.data()), reinterpret_cast<std::uint32_t*>(pool.data()),
-               keep_d.data(), long(B / 4), kept, coords_.data(), moved.data());
-  pool_ = std::move(pool);
-  coords_ = std::move(moved);
-  VisitEncoding(options().encoding, [&](auto tag) {
-    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(kept) * 512, long(capacity_ - kept) * 512);
-  });
-  last_seen_ = std::move(seen);
-  // The kept bricks' change flags follow them to their new slots.
-  std::vector<std::uint8_t> kept_dirty(dirty_.size(), 0);
-  for (int j = 0; j < kept; ++j) kept_dirty[std::size_t(j)] = dirty[std::size_t(keep[std::size_t(j)])];
-  cuda::CopyHostToDevice(dirty_.data(), kept_dirty.data(), kept_dirty.size());
-  swapped_out_ += count;
-  allocated_ = kept;
-  RebuildTables(keys_.size());
-  mirror_fresh_ = false;
-}
-
 std::size_t DeviceVolume::gpu_bytes() const {
   Settled();
   return (keys_.size() + group_keys_.size()) * (sizeof(std::uint64_t) + sizeof(int)) +
@@ -536,121 +465,6 @@ void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const Image
 
 void DeviceVolume::Raycast(const RaycastArgs& a, const RenderingViews& out, cudaStream_t stream) const {
   VisitEncoding(options().encoding, [&](auto tag) { RaycastInto(par::Gpu{stream}, view<decltype(tag)>(), a, out); });
-}
-
-const Volume& DeviceVolume::Download() {
-  Settled();
-  if (mirror_fresh_) return mirror_;
-  std::vector<std::uint8_t> pool(std::size_t(allocated_) * 512 * std::size_t(vbytes_));
-  std::vector<BrickCoord> bc(static_cast<std::size_t>(allocated_));
-  if (allocated_ > 0) {
-    cuda::CopyDeviceToHost(pool.data(), pool_.data(), pool.size());
-    cuda::CopyDeviceToHost(bc.data(), coords_.data(), bc.size() * sizeof(BrickCoord));
-  }
-  std::vector<std::array<int, 3>> coords(bc.size());
-  for (std::size_t i = 0; i < bc.size(); ++i) coords[i] = {bc[i].x, bc[i].y, bc[i].z};
-  // Bricks in host memory follow, in key order.
-  if (!host_.empty()) {
-    std::vector<std::uint64_t> keys;
-    for (const auto& h : host_) keys.push_back(h.first);
-    std::sort(keys.begin(), keys.end());
-    for (const std::uint64_t k : keys) {
-      const std::vector<std::uint8_t>& v = host_.at(k);
-      pool.insert(pool.end(), v.begin(), v.end());
-      std::array<int, 3> c;
-      DecodeBrickKey(k, &c[0], &c[1], &c[2]);
-      coords.push_back(c);
-    }
-  }
-  mirror_.Assign(std::move(pool), std::move(coords), full_reason_);
-  mirror_fresh_ = true;
-  return mirror_;
-}
-
-void DeviceVolume::Upload(const Volume& v) {
-  Settled();
-  const int n = int(v.allocated_bricks());
-  // With a GPU budget the model may not fit: the bricks allocated last (nearest the end of
-  // the scan, where it goes on) go to the GPU, the earlier ones to host memory.
-  const int gpu_budget = int(options().gpu_bricks());
-  const int first = gpu_budget > 0 && n > gpu_budget ? n - (gpu_budget - gpu_budget / 8) : 0;
-  const int on_gpu = n - first;
-  const std::size_t B = 512 * std::size_t(vbytes_);
-  allocated_ = 0;
-  host_.clear();
-  host_bytes_ = 0;
-  swapped_out_ = swapped_in_ = 0;
-  full_reason_.clear();
-  if (!Reserve(std::max(on_gpu, 1024))) throw Error("the GPU has too little memory free for the model: " + full_reason_);
-  VisitEncoding(options().encoding, [&](auto tag) {
-    FillDefault(reinterpret_cast<decltype(tag)*>(pool_.data()), long(on_gpu) * 512, long(capacity_ - on_gpu) * 512);
-  });
-  std::vector<BrickCoord> all(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) all[std::size_t(i)] = {v.bricks()[std::size_t(i)][0], v.bricks()[std::size_t(i)][1], v.bricks()[std::size_t(i)][2]};
-  host_dirty_.clear();
-  HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty_.size()));
-  if (on_gpu > 0) HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 1, std::size_t(on_gpu)));
-  for (int i = 0; i < first; ++i) {
-    const std::uint8_t* src = v.pool().data() + std::size_t(i) * B;
-    host_dirty_.insert(BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z));
-    host_[BrickKey(all[std::size_t(i)].x, all[std::size_t(i)].y, all[std::size_t(i)].z)] = std::vector<std::uint8_t>(src, src + B);
-    host_bytes_ += B + sizeof(std::uint64_t);
-  }
-  if (on_gpu > 0) {
-    cuda::CopyHostToDevice(pool_.data(), v.pool().data() + std::size_t(first) * B, std::size_t(on_gpu) * B);
-    cuda::CopyHostToDevice(coords_.data(), all.data() + first, std::size_t(on_gpu) * sizeof(BrickCoord));
-  }
-  box_ = {};
-  if (n > 0) Extend(all.data(), n);
-  WriteBox();
-  allocated_ = on_gpu;
-  frame_ = 0;
-  last_seen_.assign(std::size_t(on_gpu), 0);
-  RebuildTables(keys_.size());
-  full_reason_ = v.full_reason();
-  mirror_.Assign(v.pool(), v.bricks(), v.full_reason());
-  mirror_fresh_ = first == 0;  // else the mirror's slot order is the download's, not the file's
-}
-
-BrickSet DeviceVolume::CopyChanged() {
-  Settled();
-  BrickSet out;
-  const std::size_t B = 512 * std::size_t(vbytes_);
-  std::vector<int> slots;
-  if (allocated_ > 0) {
-    std::vector<std::uint8_t> dirty(static_cast<std::size_t>(allocated_));
-    cuda::CopyDeviceToHost(dirty.data(), dirty_.data(), dirty.size());
-    HDRF_CUDA_CHECK(cudaMemset(dirty_.data(), 0, dirty.size()));
-    for (int s = 0; s < allocated_; ++s)
-      if (dirty[std::size_t(s)]) slots.push_back(s);
-  }
-  const int n = int(slots.size());
-  out.coords.resize(slots.size() + host_dirty_.size());
-  out.voxels.resize(out.coords.size() * B);
-  if (n > 0) {
-    DeviceBuffer<int> list{slots.size()};
-    cuda::CopyHostToDevice(list.data(), slots.data(), slots.size() * sizeof(int));
-    DeviceBuffer<std::uint8_t> voxels{slots.size() * B};
-    DeviceBuffer<BrickCoord> coords{slots.size()};
-    GatherBricks(reinterpret_cast<const std::uint32_t*>(pool_.data()), reinterpret_cast<std::uint32_t*>(voxels.data()),
-                 list.data(), long(B / 4), n, coords_.data(), coords.data());
-    std::vector<BrickCoord> c(slots.size());
-    cuda::CopyDeviceToHost(c.data(), coords.data(), c.size() * sizeof(BrickCoord));
-    cuda::CopyDeviceToHost(out.voxels.data(), voxels.data(), slots.size() * B);
-    for (int i = 0; i < n; ++i) out.coords[std::size_t(i)] = {c[std::size_t(i)].x, c[std::size_t(i)].y, c[std::size_t(i)].z};
-  }
-  std::size_t k = std::size_t(n);
-  for (const std::uint64_t key : host_dirty_) {
-    const auto it = host_.find(key);
-    if (it == host_.end()) continue;
-    DecodeBrickKey(key, &out.coords[k][0], &out.coords[k][1], &out.coords[k][2]);
-    std::memcpy(out.voxels.data() + k * B, it->second.data(), B);
-    ++k;
-  }
-  out.coords.resize(k);
-  out.voxels.resize(k * B);
-  host_dirty_.clear();
-  return out;
 }
 
 void DeviceVolume::Extend(const BrickCoord* c, int n) {
