@@ -18,7 +18,7 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
   std::vector<EngineBenchRow> rows;
   constexpr int kWarmup = 5;
   // Each device's copy bandwidth, measured once for the whole table.
-  double bandwidth[2] = {-1, -1};
+  double bandwidth[2] = {-1, -1}, bus = -1;
   for (const BenchCase& c : o.cases) {
     sim::SimOptions so;
     so.width = c.width;
@@ -83,6 +83,11 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
         double& bw = bandwidth[dev == Device::kCuda ? 1 : 0];
         if (bw < 0) bw = dev == Device::kCuda ? CudaCopyBandwidth() : CpuCopyBandwidth();
         row.bandwidth = bw;
+        if (dev == Device::kCuda) {
+          if (bus < 0) bus = CudaUploadBandwidth();
+          row.upload_bytes = UploadBytes(c.width, c.height);
+          row.bus_bandwidth = bus;
+        }
         const VolumeStats vs = pipe.volume_stats();
         row.bricks = vs.allocated_bricks;
         const double bytes = double(vs.bytes);
@@ -155,6 +160,69 @@ StageTimes StageFloorBytes(int width, int height, const std::array<double, 4>& l
   return b;
 }
 
+double UploadBytes(int width, int height) { return 7.0 * double(width) * double(height); }
+
+StageTimes StageFloorMs(const EngineBenchRow& r) {
+  StageTimes f;
+  if (r.bandwidth <= 0) return f;
+  const double per_byte = 1e3 / r.bandwidth;
+  f.convert = r.bytes.convert * per_byte;
+  if (r.upload_bytes > 0) f.convert = r.bus_bandwidth > 0 ? f.convert + 1e3 * r.upload_bytes / r.bus_bandwidth : 0;
+  f.normalize = r.bytes.normalize * per_byte;
+  f.track = r.bytes.track * per_byte;
+  f.integrate = r.bytes.integrate * per_byte;
+  f.raycast = r.bytes.raycast * per_byte;
+  return f;
+}
+
+namespace {
+// The stages the floor tables name, with a row's figure of each.
+struct StageField {
+  const char* name;
+  double StageTimes::*field;
+};
+constexpr StageField kFloorStages[] = {{"convert", &StageTimes::convert},
+                                       {"normalize", &StageTimes::normalize},
+                                       {"track", &StageTimes::track},
+                                       {"integrate", &StageTimes::integrate},
+                                       {"raycast", &StageTimes::raycast}};
+}  // namespace
+
+std::string EngineMarginTable(const std::vector<EngineBenchRow>& rows) {
+  std::string out;
+  char line[512];
+  std::vector<bool> done(rows.size(), false);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (done[i]) continue;
+    // This row's device, encoding and voxel size: the smallest and the largest frame of them.
+    const EngineBenchRow* lo = &rows[i];
+    const EngineBenchRow* hi = &rows[i];
+    auto pixels = [](const EngineBenchRow& r) { return double(r.c.width) * double(r.c.height); };
+    for (std::size_t j = i; j < rows.size(); ++j) {
+      const EngineBenchRow& r = rows[j];
+      if (r.device != rows[i].device || r.encoding != rows[i].encoding || r.c.voxel_mm != rows[i].c.voxel_mm) continue;
+      done[j] = true;
+      if (pixels(r) < pixels(*lo)) lo = &r;
+      if (pixels(r) > pixels(*hi)) hi = &r;
+    }
+    if (pixels(*hi) <= pixels(*lo)) continue;
+    const StageTimes f_lo = StageFloorMs(*lo), f_hi = StageFloorMs(*hi);
+    for (const StageField& s : kFloorStages) {
+      const double m1 = lo->ms.*s.field, m2 = hi->ms.*s.field, f1 = f_lo.*s.field, f2 = f_hi.*s.field;
+      if (!(f2 > f1)) continue;  // no floor, or one that does not grow with the frame
+      const double k = (m2 - m1) / (f2 - f1), fixed = m2 - k * f2;
+      std::snprintf(line, sizeof line, "| %s | %s | %dx%d -> %dx%d | %g mm | %s | %.3f / %.3f | %.4f / %.4f | %.3f | %.1f | %.0f %% |\n",
+                    DeviceName(lo->device), volume::VoxelEncodingName(lo->encoding), lo->c.width, lo->c.height,
+                    hi->c.width, hi->c.height, lo->c.voxel_mm, s.name, m1, m2, f1, f2, fixed, k,
+                    m2 > 0 ? 100.0 * k * f2 / m2 : 0.0);
+      out += line;
+    }
+  }
+  if (out.empty()) return out;
+  return "| device | voxel | sizes | voxel size | stage | ms | floor ms | fixed ms | x floor at the margin | "
+         "share of the larger's time that grows with its bytes |\n|---|---|---|---|---|---|---|---|---|---|\n" + out;
+}
+
 double CpuCopyBandwidth() {
   constexpr std::size_t kBytes = 256ull << 20;
   std::vector<char> a(kBytes, 1), b(kBytes, 0);
@@ -175,22 +243,29 @@ double CpuCopyBandwidth() {
 
 std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
   std::string out =
-      "| device | voxel | size | copy GB/s | stage | ms | least MB moved | floor ms | x floor |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "| device | voxel | size | copy GB/s | bus GB/s | stage | ms | least MB moved | MB over the bus | floor ms | x floor |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n";
   char line[512];
   for (const auto& r : rows) {
-    const std::pair<const char*, double> stages[] = {{"convert", r.ms.convert},     {"normalize", r.ms.normalize},
-                                                     {"track", r.ms.track},         {"integrate", r.ms.integrate},
-                                                     {"raycast", r.ms.raycast}};
-    const double bytes[] = {r.bytes.convert, r.bytes.normalize, r.bytes.track, r.bytes.integrate, r.bytes.raycast};
-    for (std::size_t k = 0; k < 5; ++k) {
-      const double floor_ms = r.bandwidth > 0 ? 1e3 * bytes[k] / r.bandwidth : 0;
-      std::snprintf(line, sizeof line, "| %s | %s | %dx%d | %.0f | %s | %.3f | %.2f | %.4f | %.0f |\n", DeviceName(r.device),
-                    volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.bandwidth / 1e9, stages[k].first,
-                    stages[k].second, bytes[k] / 1e6, floor_ms, floor_ms > 0 ? stages[k].second / floor_ms : 0.0);
+    const StageTimes floors = StageFloorMs(r);
+    const bool gpu = r.device == Device::kCuda;
+    char bus[32] = "-";
+    if (gpu) std::snprintf(bus, sizeof bus, "%.1f", r.bus_bandwidth / 1e9);
+    for (const StageField& s : kFloorStages) {
+      const double ms = r.ms.*s.field, floor_ms = floors.*s.field;
+      const bool over_bus = gpu && s.field == &StageTimes::convert;
+      char upload[32] = "-";
+      if (gpu) std::snprintf(upload, sizeof upload, "%.2f", over_bus ? r.upload_bytes / 1e6 : 0.0);
+      std::snprintf(line, sizeof line, "| %s | %s | %dx%d | %.0f | %s | %s | %.3f | %.2f | %s | %.4f | %.0f |\n",
+                    DeviceName(r.device), volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, r.bandwidth / 1e9,
+                    bus, s.name, ms, (r.bytes.*s.field) / 1e6, upload, floor_ms, floor_ms > 0 ? ms / floor_ms : 0.0);
       out += line;
     }
   }
+  const std::string margins = EngineMarginTable(rows);
+  if (!margins.empty())
+    out += "\nHow each stage's time grows with its floor from the smaller frame to the larger (time = fixed + k x floor "
+           "through the two; k = 1: each further byte at full bandwidth):\n\n" + margins;
   // How the tracking stage's time divides over its iterations (what a faster sum or step buys).
   out += "\nGauss-Newton iterations a frame (mean; levels finest first) and the tracking stage's time per iteration:\n\n"
          "| device | voxel | size | iterations (level 0 / 1 / 2) | all | track ms per iteration |\n"

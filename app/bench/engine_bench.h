@@ -46,6 +46,9 @@ struct EngineBenchRow {
   // device's measured copy bandwidth (bytes/s): the stage's floor is their quotient.
   StageTimes bytes;
   double bandwidth = 0;
+  // On the GPU the frame crosses the bus first (convert): its bytes (UploadBytes) and the
+  // measured upload bandwidth from pinned memory (bytes/s); 0 on the CPU.
+  double upload_bytes = 0, bus_bandwidth = 0;
   std::array<double, 4> level_iterations{};  // mean Gauss-Newton iterations a frame, finest level first
   // The slow frames a mean hides (a stall while the model grows, say): the stages' sum of
   // the timed frames at the 99th percentile and the largest, and the largest integrate stage.
@@ -75,6 +78,18 @@ std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows);
 // reads every visible brick once and writes vertices, normals and radiance (36 B a pixel).
 StageTimes StageFloorBytes(int width, int height, const std::array<double, 4>& level_iterations,
                            double visible_bricks, double brick_bytes);
+// The frame as the engine takes it, in bytes: 8-bit colour and depth in float metres (7 B a
+// pixel), what a GPU's convert stage must bring over the bus.
+double UploadBytes(int width, int height);
+// Each stage's floor in ms: its least bytes at the row's copy bandwidth, plus for the GPU's
+// convert stage the frame's upload at the bus's bandwidth. 0 where a bandwidth is unknown.
+StageTimes StageFloorMs(const EngineBenchRow& r);
+// Markdown table of how each stage's time grows with its floor, between the smallest and the
+// largest frame run for one device, voxel encoding and voxel size: time = fixed + k x floor
+// through the two, so k is the cost of the stage's further bytes in floors (1: at full
+// bandwidth) and fixed is what does not grow with them (launches, waits, chains of dependent
+// steps). Empty where no device, encoding and voxel size was run at two frame sizes.
+std::string EngineMarginTable(const std::vector<EngineBenchRow>& rows);
 // Bytes per second a parallel memcpy of 256 MiB achieves on the CPU threads (read plus write).
 double CpuCopyBandwidth();
 

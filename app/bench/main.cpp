@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
                    r.c.voxel_mm, r.fps);
     });
     std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
-    std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth):\n\n%s",
+    std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth; on the GPU the frame's upload at the bus's):\n\n%s",
                 pipeline::EngineFloorTable(rows).c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hdrfusion-bench: %s\n", e.what());

@@ -140,7 +140,7 @@ Command AddBenchCommand(CLI::App& app) {
                      r.c.height, r.c.voxel_mm, r.fps);
       });
       std::printf("%s", pipeline::EngineBenchTable(rows).c_str());
-      std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth):\n\n%s",
+      std::printf("\nEach stage against its memory-bandwidth floor (the least bytes it must move, at the measured copy bandwidth; on the GPU the frame's upload at the bus's):\n\n%s",
                   pipeline::EngineFloorTable(rows).c_str());
       return 0;
     }

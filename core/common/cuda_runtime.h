@@ -28,6 +28,9 @@ std::size_t CudaMemoryUsed();
 // GPU 0's memory bandwidth as a device-to-device copy achieves it (bytes read plus bytes
 // written, per second; the best of a few copies of 256 MiB), 0 when there is no GPU.
 double CudaCopyBandwidth();
+// Bytes per second a copy from pinned host memory to GPU 0 achieves (the best of a few copies
+// of 64 MiB): the most the bus carries a frame's upload at. 0 when there is no GPU.
+double CudaUploadBandwidth();
 
 namespace cuda {
 void* Malloc(std::size_t bytes);

@@ -72,6 +72,37 @@ double CudaCopyBandwidth() {
   return best;
 }
 
+double CudaUploadBandwidth() {
+  if (!CudaAvailable()) return 0;
+  constexpr std::size_t kBytes = 64ull << 20;
+  void* host = nullptr;
+  HDRF_CUDA_CHECK(cudaMallocHost(&host, kBytes));
+  void* dev = nullptr;
+  try {
+    dev = cuda::Malloc(kBytes);
+  } catch (...) {
+    cudaFreeHost(host);
+    throw;
+  }
+  std::memset(host, 1, kBytes);
+  double best = 0;
+  for (int k = 0; k < 5; ++k) {
+    cuda::Synchronize();
+    const auto t0 = std::chrono::steady_clock::now();
+    const cudaError_t err = cudaMemcpy(dev, host, kBytes, cudaMemcpyHostToDevice);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (err != cudaSuccess) {
+      cuda::Free(dev);
+      cudaFreeHost(host);
+      HDRF_CUDA_CHECK(err);
+    }
+    if (k > 0 && s > 0) best = std::max(best, double(kBytes) / s);  // the first copy warms up
+  }
+  cuda::Free(dev);
+  cudaFreeHost(host);
+  return best;
+}
+
 namespace cuda {
 void* Malloc(std::size_t bytes) {
   void* p = nullptr;

@@ -12,6 +12,7 @@ bool CudaAvailable(std::string* why) {
 std::string CudaDeviceDescription() { return ""; }
 std::size_t CudaMemoryUsed() { return 0; }
 double CudaCopyBandwidth() { return 0; }
+double CudaUploadBandwidth() { return 0; }
 
 namespace cuda {
 void* Malloc(std::size_t) { ThrowNoCudaBackend(); }

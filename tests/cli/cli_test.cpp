@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -204,38 +205,68 @@ TEST(Cli, BenchOnTheGpuAloneMeasuresItOrSaysWhyNot) {
   }
 }
 
-// The stage table against the memory-bandwidth floors: every stage of the CPU row is there,
-// with a measured copy bandwidth, and none takes less than the time its least bytes need.
+// The stage table against the memory-bandwidth floors: every stage of the CPU rows is there,
+// with a measured copy bandwidth, and none takes less than the time its least bytes need. Run
+// at two frame sizes, the margin table's line through the two passes through both rows'
+// figures (fixed + k x floor gives each stage's time at either size).
 TEST(Cli, BenchSetsEachStageAgainstItsBandwidthFloor) {
-  const RunResult r = test::RunCommand(std::string(HDRF_BENCH) + " --device cpu --frames 5 --case 64x48x40");
+  const RunResult r =
+      test::RunCommand(std::string(HDRF_BENCH) + " --device cpu --frames 5 --case 64x48x40 --case 128x96x40");
   ASSERT_EQ(r.status, 0) << r.output;
-  int stages = 0;
-  for (const char* stage : {"convert", "normalize", "track", "integrate", "raycast"}) {
-    const std::string key = std::string("| cpu | compact | 64x48 | ");
-    std::size_t at = r.output.find(key);
-    for (; at != std::string::npos; at = r.output.find(key, at + 1)) {
-      const std::size_t eol = r.output.find('\n', at);
-      const std::string line = r.output.substr(at, eol - at);
-      if (line.find(std::string("| ") + stage + " |") == std::string::npos) continue;
-      double gbs = 0, ms = 0, mb = 0, floor_ms = 0, times = 0;
-      char name[32];
-      ASSERT_EQ(std::sscanf(line.c_str(), "| cpu | compact | 64x48 | %lf | %31s | %lf | %lf | %lf | %lf |", &gbs, name, &ms,
-                            &mb, &floor_ms, &times),
-                6)
-          << line;
-      EXPECT_GT(gbs, 0.1) << line;
-      EXPECT_GT(mb, 0) << line;
-      EXPECT_GE(ms, floor_ms) << line;
-      ++stages;
-      break;
+  std::map<std::string, std::array<double, 2>> stage_ms, stage_floor;  // at 64x48, 128x96
+  for (int size = 0; size < 2; ++size) {
+    const std::string key = size == 0 ? "| cpu | compact | 64x48 | " : "| cpu | compact | 128x96 | ";
+    for (const char* stage : {"convert", "normalize", "track", "integrate", "raycast"}) {
+      std::size_t at = r.output.find(key);
+      for (; at != std::string::npos; at = r.output.find(key, at + 1)) {
+        const std::size_t eol = r.output.find('\n', at);
+        const std::string line = r.output.substr(at + key.size(), eol - at - key.size());
+        if (line.find(std::string("| ") + stage + " |") == std::string::npos) continue;
+        double gbs = 0, ms = 0, mb = 0, floor_ms = 0, times = 0;
+        char bus[16], name[32], upload[16];
+        ASSERT_EQ(std::sscanf(line.c_str(), "%lf | %15s | %31s | %lf | %lf | %15s | %lf | %lf |", &gbs, bus, name, &ms, &mb,
+                              upload, &floor_ms, &times),
+                  8)
+            << line;
+        EXPECT_STREQ(bus, "-") << line;  // no bus on the CPU
+        EXPECT_GT(gbs, 0.1) << line;
+        EXPECT_GT(mb, 0) << line;
+        EXPECT_NEAR(floor_ms, mb / gbs, 1e-4 + floor_ms * (0.5 / gbs + 0.01)) << line;  // (GB/s to the unit)
+        EXPECT_GE(ms, floor_ms) << line;
+        stage_ms[stage][std::size_t(size)] = ms;
+        stage_floor[stage][std::size_t(size)] = floor_ms;
+        break;
+      }
     }
   }
-  EXPECT_EQ(stages, 5) << r.output;
+  ASSERT_EQ(stage_ms.size(), 5u) << r.output;
+  const std::size_t margins = r.output.find("x floor at the margin");
+  ASSERT_NE(margins, std::string::npos) << r.output;
+  int fitted = 0;
+  for (const auto& [stage, ms] : stage_ms) {
+    const std::string key = "| cpu | compact | 64x48 -> 128x96 | 40 mm | " + stage + " | ";
+    const std::size_t at = r.output.find(key, margins);
+    if (stage_floor[stage][1] <= stage_floor[stage][0]) continue;  // a floor that did not grow has no line
+    ASSERT_NE(at, std::string::npos) << stage << "\n" << r.output.substr(margins);
+    double m1 = 0, m2 = 0, f1 = 0, f2 = 0, fixed = 0, k = 0;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at + key.size(), "%lf / %lf | %lf / %lf | %lf | %lf |", &m1, &m2, &f1, &f2, &fixed, &k),
+              6)
+        << r.output.substr(at, 200);
+    EXPECT_DOUBLE_EQ(m1, ms[0]) << stage;
+    EXPECT_DOUBLE_EQ(m2, ms[1]) << stage;
+    // Printed to 0.001 ms, the floors to 0.0001 and k to a tenth: the line meets both points
+    // within that rounding.
+    const double tol = 0.002 + 0.05 * f2 + 1e-4 * std::abs(k);
+    EXPECT_NEAR(fixed + k * f1, m1, tol) << stage;
+    EXPECT_NEAR(fixed + k * f2, m2, tol) << stage;
+    ++fitted;
+  }
+  EXPECT_GE(fitted, 4) << r.output.substr(margins);
   // The tracking stage divided over its Gauss-Newton iterations: the levels' means add up to
   // the frame's, and each iteration takes some of the stage's time.
   const std::size_t it = r.output.find("iterations (level 0 / 1 / 2)");
   ASSERT_NE(it, std::string::npos) << r.output;
-  const std::size_t row = r.output.find("| cpu | compact | 64x48 | ", it);
+  const std::size_t row = r.output.find("| cpu | compact | 64x48 | ", it);  // (its line comes first)
   ASSERT_NE(row, std::string::npos) << r.output;
   double l0 = -1, l1 = -1, l2 = -1, all = -1, per = -1;
   ASSERT_EQ(std::sscanf(r.output.c_str() + row, "| cpu | compact | 64x48 | %lf / %lf / %lf | %lf | %lf |", &l0, &l1, &l2,
