@@ -230,6 +230,10 @@ struct LongRun {
   eval::TrajectoryError te;
   double max_fused_m = 0;
   int frames = 0, fused = 0, lost = 0;
+  // The first relocalised frame: how far its pose is from the view of the entry it was found
+  // from (metres, degrees), and from the truth; frame -1 where none was relocalised.
+  int reloc_frame = -1;
+  double reloc_from_m = 0, reloc_from_deg = 0, reloc_err_m = 0;
 };
 // Frames [blank_from, blank_to) arrive black with no depth (a covered camera).
 LongRun ScanLong(sim::AeMode mode, int frames = 1000, int width = 320, int height = 240, int blank_from = -1,
@@ -294,6 +298,17 @@ LongRun ScanLong(sim::AeMode mode, int frames = 1000, int width = 320, int heigh
       std::printf("  reloc %zu: %s nearest-true entry %d (frame %d) cost %.2f rot %.1f deg; code-nearest %d off %.2f m; %s\n", i,
                   pipeline::FrameStateName(r.state), bi, bi >= 0 ? ents[std::size_t(bi)].frame : -1, best, bdeg,
                   r.nearest_entry, cand_err, r.why.c_str());
+    }
+    if (r.state == FrameState::kRelocalised && run.reloc_frame < 0 && r.reloc_entry >= 0) {
+      const Pose d = session.pipeline().relocaliser().entries()[std::size_t(r.reloc_entry)].T_world_camera.inverse() * est[i];
+      run.reloc_frame = int(i);
+      run.reloc_from_m = se3::TranslationNorm(d);
+      run.reloc_from_deg = se3::RotationAngle(d) * 180 / M_PI;
+      run.reloc_err_m = e;
+      std::printf("  first relocalisation, frame %zu: %.2f m and %.1f deg from the view of entry %d (frame %d); %.2f cm "
+                  "from the truth\n",
+                  i, run.reloc_from_m, run.reloc_from_deg, r.reloc_entry,
+                  session.pipeline().relocaliser().entries()[std::size_t(r.reloc_entry)].frame, 100 * e);
     }
     if ((r.fused && e > 0.02 && said++ < 5) || (i > 0 && r.state != session.reports()[i - 1].state))
       std::printf("  frame %zu: %s, error %.2f cm, quality %.2f, rms %.2f mm / %.3f %s\n", i,
@@ -371,6 +386,10 @@ TEST(LongScan, ACameraCoveredWhileMovingIsFoundFarFromTheViewItIsTrackedFrom) {
   const LongRun run = ScanLong(sim::AeMode::kSmooth, 800, 160, 120, 601, 700);
   EXPECT_GE(run.fused, 650);
   EXPECT_LE(run.max_fused_m, 0.08);
+  // Found beyond a tracked frame's reach of the view it was found from, and found right.
+  ASSERT_GE(run.reloc_frame, 700);
+  EXPECT_TRUE(run.reloc_from_m > 0.25 || run.reloc_from_deg > 25) << run.reloc_from_m << " m, " << run.reloc_from_deg << " deg";
+  EXPECT_LE(run.reloc_err_m, 0.05);
 }
 
 // A scan whose tracking degraded before it was lost (the recent point-to-surface residuals 4x

@@ -253,8 +253,13 @@ TEST(Sensors, RecordingScannedLaterMatchesTheLiveScan) {
   std::printf("[ figures  ] %zu frames: live vs recorded trajectory, largest difference %.6f mm\n", replay.size(),
               1000 * worst);
   EXPECT_LT(worst, 1e-3);
-  // The camera moved (the comparison is not of two standing cameras).
-  EXPECT_GT((live_poses.back().translation() - live_poses.front().translation()).norm(), 0.01);
+  // The camera moved (the comparison is not of two standing cameras). Its farthest pose from
+  // the first, not its last: the test device's camera goes back and forth along its path in
+  // real time, and a scan slowed by other work takes frames that far apart (under a loaded
+  // suite the first and last frame of one run were 0.77 cm apart, its frames 50 s apart).
+  double farthest = 0;
+  for (const Pose& T : live_poses) farthest = std::max(farthest, (T.translation() - live_poses.front().translation()).norm());
+  EXPECT_GT(farthest, 0.01);
 }
 
 std::uint64_t Hash(const ColorImage& c) {
