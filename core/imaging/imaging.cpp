@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/lanes.h"
 #include "imaging/imaging_driver.h"
 #include "imaging/imaging_impl.h"
 
@@ -57,9 +58,6 @@ BilateralTables MakeBilateralTables(float ss, float sd, int r) {
 }
 
 namespace {
-
-using Lanes = float __attribute__((vector_size(4 * sizeof(float))));
-using LaneInts = int __attribute__((vector_size(4 * sizeof(int))));
 
 // BilateralPixel for pixels x .. x + 3 of row y, whose windows lie inside the image: each
 // lane adds its pixel's taps in the same order with the same operations. A tap that

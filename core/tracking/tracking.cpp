@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "common/error.h"
+#include "common/lanes.h"
 #include "common/message.h"
 #include "imaging/imaging.h"
 #include "tracking/pyramid_driver.h"
@@ -154,8 +155,37 @@ LiveView LiveLevel::view() const {
 
 namespace {
 
-// The ICP terms of a row: every pixel's projection first (IcpProject), then the terms at the
-// reference pixels found (IcpAt), in pixel order: IcpTerm's operations and order.
+// IcpProject for pixels x .. x + 3 of row y, each lane with its operations in its order (the
+// same bits); ok[k] as IcpProject's result.
+void IcpProjectFour(const IcpArgs& a, int x, int y, Float3 p[4], int ux[4], int uy[4], bool ok[4]) {
+  const Float3* v = &a.live_vertex(x, y);
+  const Float3* nl = &a.live_normal(x, y);
+  const Lanes vx = {v[0].x, v[1].x, v[2].x, v[3].x}, vy = {v[0].y, v[1].y, v[2].y, v[3].y},
+              vz = {v[0].z, v[1].z, v[2].z, v[3].z};
+  const Lanes nx = {nl[0].x, nl[1].x, nl[2].x, nl[3].x}, ny = {nl[0].y, nl[1].y, nl[2].y, nl[3].y},
+              nz = {nl[0].z, nl[1].z, nl[2].z, nl[3].z};
+  const LaneInts has = ~(vz <= 0.f) & (nx * nx + ny * ny + nz * nz != 0.f);
+  const float* r = a.T_world_live.r;
+  const Float3 t = a.T_world_live.t;
+  const Lanes px = r[0] * vx + r[1] * vy + r[2] * vz + t.x, py = r[3] * vx + r[4] * vy + r[5] * vz + t.y,
+              pz = r[6] * vx + r[7] * vy + r[8] * vz + t.z;
+  const float* q = a.T_ref_world.r;
+  const Float3 s = a.T_ref_world.t;
+  const Lanes rx = q[0] * px + q[1] * py + q[2] * pz + s.x, ry = q[3] * px + q[4] * py + q[5] * pz + s.y,
+              rz = q[6] * px + q[7] * py + q[8] * pz + s.z;
+  const LaneInts front = has & ~(rz <= 0.f);
+  const Lanes inv_z = 1.0f / rz;
+  const PinholeCamera& c = a.ref_cam;
+  const LaneInts u = RoundToIntLanes(c.fx * rx * inv_z + c.cx), w = RoundToIntLanes(c.fy * ry * inv_z + c.cy);
+  for (int k = 0; k < 4; ++k) {
+    p[k] = Float3{px[k], py[k], pz[k]};
+    ux[k] = u[k], uy[k] = w[k];
+    ok[k] = front[k] && !(u[k] < 0 || w[k] < 0 || u[k] >= c.width || w[k] >= c.height);
+  }
+}
+
+// The ICP terms of a row: every pixel's projection first (IcpProject, four at once), then the
+// terms at the reference pixels found (IcpAt), in pixel order: IcpTerm's operations and order.
 struct IcpRows {
   IcpArgs a;
   void operator()(int x, int y, TermBatch& s) const { IcpTerm(a, x, y, s); }
@@ -166,7 +196,17 @@ struct IcpRows {
     std::int32_t u[kRun][2];
     for (int x0 = 0; x0 < w; x0 += kRun) {
       int n = 0;
-      for (int x = x0; x < std::min(w, x0 + kRun); ++x) {
+      const int end = std::min(w, x0 + kRun);
+      int x = x0;
+      for (; x + 4 <= end; x += 4) {
+        Float3 p4[4];
+        int ux[4], uy[4];
+        bool ok[4];
+        IcpProjectFour(a, x, y, p4, ux, uy, ok);
+        for (int k = 0; k < 4; ++k)
+          if (ok[k]) p[n] = p4[k], at[n] = x + k, u[n][0] = ux[k], u[n][1] = uy[k], ++n;
+      }
+      for (; x < end; ++x) {
         int ux, uy;
         if (IcpProject(a, x, y, &p[n], &ux, &uy)) at[n] = x, u[n][0] = ux, u[n][1] = uy, ++n;
       }
