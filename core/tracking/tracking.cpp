@@ -215,6 +215,68 @@ struct IcpRows {
   }
 };
 
+// PhotoProject for pixels x .. x + 3 of row y, each lane with its operations in its order
+// (the same bits); ok[k] as PhotoProject's result.
+void PhotoProjectFour(const PhotoArgs& a, int x, int y, Float3 q[4], imaging::BilinearAt at[4], float i_ref[4],
+                      bool ok[4]) {
+  const Float3* m = &a.ref_vertex(x, y);
+  const float* ir = &a.ref_intensity(x, y);
+  const Lanes mx = {m[0].x, m[1].x, m[2].x, m[3].x}, my = {m[0].y, m[1].y, m[2].y, m[3].y},
+              mz = {m[0].z, m[1].z, m[2].z, m[3].z};
+  const Lanes i = {ir[0], ir[1], ir[2], ir[3]};
+  const LaneInts has = ~((mx == 0.f) & (my == 0.f) & (mz == 0.f)) & (i != 0.f);
+  const float* r = a.T_live_world.r;
+  const Float3 t = a.T_live_world.t;
+  const Lanes qx = r[0] * mx + r[1] * my + r[2] * mz + t.x, qy = r[3] * mx + r[4] * my + r[5] * mz + t.y,
+              qz = r[6] * mx + r[7] * my + r[8] * mz + t.z;
+  const LaneInts front = has & ~(qz <= 0.1f);
+  const PinholeCamera& c = a.live_cam;
+  const Lanes inv_z = 1.0f / qz;
+  const Lanes ux = c.fx * qx * inv_z + c.cx, uy = c.fy * qy * inv_z + c.cy;
+  // BilinearAt::Set: inside [0, size - 1.001] along both axes, then the integer and fractional parts.
+  const float xmax = float(a.live_intensity.width) - 1.001f, ymax = float(a.live_intensity.height) - 1.001f;
+  const LaneInts inside = front & ~((ux < 0.f) | (uy < 0.f) | (ux > xmax) | (uy > ymax));
+  const Lanes zero = {0.f, 0.f, 0.f, 0.f};
+  const LaneInts ix = __builtin_convertvector(inside ? ux : zero, LaneInts), iy = __builtin_convertvector(inside ? uy : zero, LaneInts);
+  const Lanes ax = ux - __builtin_convertvector(ix, Lanes), ay = uy - __builtin_convertvector(iy, Lanes);
+  for (int k = 0; k < 4; ++k) {
+    q[k] = Float3{qx[k], qy[k], qz[k]};
+    at[k].ix = ix[k], at[k].iy = iy[k], at[k].ax = ax[k], at[k].ay = ay[k];
+    i_ref[k] = i[k];
+    ok[k] = inside[k] != 0;
+  }
+}
+
+// The photometric terms of a row: the projections first (four at once), then the terms, in
+// pixel order: PhotoTerm's operations and order.
+struct PhotoRows {
+  PhotoArgs a;
+  void operator()(int x, int y, TermBatch& s) const { PhotoTerm(a, x, y, s); }
+  void Row(int y, int w, TermBatch& s) const {
+    constexpr int kRun = 256;
+    Float3 q[kRun];
+    imaging::BilinearAt at[kRun];
+    float i_ref[kRun];
+    for (int x0 = 0; x0 < w; x0 += kRun) {
+      int n = 0;
+      const int end = std::min(w, x0 + kRun);
+      int x = x0;
+      for (; x + 4 <= end; x += 4) {
+        Float3 q4[4];
+        imaging::BilinearAt at4[4];
+        float i4[4];
+        bool ok[4];
+        PhotoProjectFour(a, x, y, q4, at4, i4, ok);
+        for (int k = 0; k < 4; ++k)
+          if (ok[k]) q[n] = q4[k], at[n] = at4[k], i_ref[n] = i4[k], ++n;
+      }
+      for (; x < end; ++x)
+        if (PhotoProject(a, x, y, &q[n], &at[n], &i_ref[n])) ++n;
+      for (int k = 0; k < n; ++k) PhotoAt(a, q[k], at[k], i_ref[k], s);
+    }
+  }
+};
+
 }  // namespace
 
 GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const LiveView& live,
@@ -223,8 +285,7 @@ GnSystem AccumulateCpu(const ReferenceView& ref, const Pose& T_world_ref, const 
   const bool use_icp = o.kind == TrackerKind::kIcp || o.kind == TrackerKind::kNrIcp;
   const bool use_photo = o.kind != TrackerKind::kIcp;
   const IcpRows icp{use_icp ? MakeIcpArgs(ref, T_world_ref, live, T_world_live, o) : IcpArgs{}};
-  const auto photo = [&, a = use_photo ? MakePhotoArgs(ref, live, T_world_live, o) : PhotoArgs{}](
-                         int x, int y, TermBatch& s) { PhotoTerm(a, x, y, s); };
+  const PhotoRows photo{use_photo ? MakePhotoArgs(ref, live, T_world_live, o) : PhotoArgs{}};
   if (use_icp && use_photo && live.cam.width == ref.cam.width && live.cam.height == ref.cam.height) {
     SumTerms(live.cam.width, live.cam.height, acc, icp, photo);
     return acc;

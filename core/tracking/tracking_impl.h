@@ -120,19 +120,24 @@ struct PhotoArgs {
   RigidTransform T_live_world;
   float photo_sigma, huber_k;
 };
-template <typename Acc>
-HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, Acc& acc) {
+// PhotoTerm in two halves, as IcpTerm: the reference point carried into the live camera and
+// its bilinear position there (PhotoProject: false where it has no term), then the term
+// (PhotoAt). The CPU runs a row's first halves before their second halves; the GPU runs
+// PhotoTerm. The same operations.
+HDRF_HD bool PhotoProject(const PhotoArgs& a, int x, int y, Float3* q, imaging::BilinearAt* at, float* i_ref) {
   const Float3 m = a.ref_vertex(x, y);
   if (m.x == 0.f && m.y == 0.f && m.z == 0.f) return false;
-  const float i_ref = a.ref_intensity(x, y);
-  if (i_ref == 0.f) return false;  // no model radiance here
-  const Float3 q = a.T_live_world.Apply(m);
-  if (q.z <= 0.1f) return false;
-  const PinholeCamera& c = a.live_cam;
-  const Float2 u = c.Project(q);
+  *i_ref = a.ref_intensity(x, y);
+  if (*i_ref == 0.f) return false;  // no model radiance here
+  *q = a.T_live_world.Apply(m);
+  if (q->z <= 0.1f) return false;
+  const Float2 u = a.live_cam.Project(*q);
   // The live level's images share one size: the position is found once for all four.
-  imaging::BilinearAt at;
-  if (!at.Set(a.live_intensity.width, a.live_intensity.height, u.x, u.y)) return false;
+  return at->Set(a.live_intensity.width, a.live_intensity.height, u.x, u.y);
+}
+template <typename Acc>
+HDRF_HD bool PhotoAt(const PhotoArgs& a, const Float3& q, const imaging::BilinearAt& at, float i_ref, Acc& acc) {
+  const PinholeCamera& c = a.live_cam;
   const float wl = at(a.live_weight);
   if (wl <= 0.f) return false;
   const float il = at(a.live_intensity), gx = at(a.live_gx), gy = at(a.live_gy);
@@ -149,6 +154,13 @@ HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, Acc& acc) {
   // scale is the one the measured scales must match.
   AddRobustTerm(acc, J, r * double(wl), 1.0 / double(a.photo_sigma), a.huber_k, 28);
   return true;
+}
+template <typename Acc>
+HDRF_HD bool PhotoTerm(const PhotoArgs& a, int x, int y, Acc& acc) {
+  Float3 q;
+  imaging::BilinearAt at;
+  float i_ref;
+  return PhotoProject(a, x, y, &q, &at, &i_ref) && PhotoAt(a, q, at, i_ref, acc);
 }
 
 }  // namespace hdrf::tracking

@@ -119,6 +119,28 @@ TEST(Tracking, NormalEquationsAreTheSameBitsForAnyNumberOfThreads) {
     EXPECT_GT(rows.icp_n(), l == 0 ? 10000 : 100);
     EXPECT_EQ(rows.icp_n(), one_by_one.icp_n());
   }
+  // The photometric terms likewise (each row's projections four pixels at a time, then the
+  // terms): the bits of PhotoTerm pixel by pixel.
+  o.kind = tracking::TrackerKind::kNr;
+  for (int l = 0; l < 3; ++l) {
+    const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
+    const tracking::LiveView lv = live.levels[std::size_t(l)].view();
+    tracking::GnSystem rows = tracking::AccumulateCpu(rv, ref.T_world_camera, lv, T, o);
+    const tracking::PhotoArgs a = tracking::MakePhotoArgs(rv, lv, T, o);
+    tracking::GnSystem one_by_one;
+    for (int y0 = 0; y0 < rv.cam.height; y0 += 4) {
+      tracking::GnSystem chunk;
+      {
+        tracking::TermBatch batch(chunk);
+        for (int y = y0; y < std::min(rv.cam.height, y0 + 4); ++y)
+          for (int x = 0; x < rv.cam.width; ++x) tracking::PhotoTerm(a, x, y, batch);
+      }
+      one_by_one.Merge(chunk);
+    }
+    EXPECT_EQ(std::memcmp(rows.v, one_by_one.v, sizeof rows.v), 0) << "level " << l;
+    EXPECT_GT(rows.photo_n(), l == 0 ? 10000 : 100);
+    EXPECT_EQ(rows.photo_n(), one_by_one.photo_n());
+  }
 }
 
 }  // namespace
