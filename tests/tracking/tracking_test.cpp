@@ -96,50 +96,42 @@ TEST(Tracking, NormalEquationsAreTheSameBitsForAnyNumberOfThreads) {
     EXPECT_EQ(std::memcmp(sums[k].v, sums[k % 3].v, sizeof sums[k].v), 0) << "level " << k % 3 << ", run " << k / 3;
   EXPECT_GT(sums[0].icp_n(), 10000);  // both terms were summed over many pixels
   EXPECT_GT(sums[0].photo_n(), 10000);
-  // The CPU sums a row's ICP terms in two passes (every pixel's projection, then the terms
-  // at the reference pixels found), in runs of 256 pixels (a 320-pixel row takes two): the
-  // bits of IcpTerm pixel by pixel, in chunks of four rows added in chunk order.
-  o.kind = tracking::TrackerKind::kIcp;
-  for (int l = 0; l < 3; ++l) {
-    const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
-    const tracking::LiveView lv = live.levels[std::size_t(l)].view();
-    tracking::GnSystem rows = tracking::AccumulateCpu(rv, ref.T_world_camera, lv, T, o);
-    const tracking::IcpArgs a = tracking::MakeIcpArgs(rv, ref.T_world_camera, lv, T, o);
-    tracking::GnSystem one_by_one;
-    for (int y0 = 0; y0 < lv.cam.height; y0 += 4) {
+  // The CPU sums a row's ICP terms and its photometric terms each in two passes (every
+  // pixel's projection, four pixels at a time, then the terms at the pixels found), in runs of
+  // 256 pixels (a 320-pixel row takes two): the bits of IcpTerm and PhotoTerm pixel by pixel,
+  // in chunks of four rows added in chunk order.
+  auto pixel_by_pixel = [](int w, int h, const auto& term) {
+    tracking::GnSystem sum;
+    for (int y0 = 0; y0 < h; y0 += 4) {
       tracking::GnSystem chunk;
       {
         tracking::TermBatch batch(chunk);
-        for (int y = y0; y < std::min(lv.cam.height, y0 + 4); ++y)
-          for (int x = 0; x < lv.cam.width; ++x) tracking::IcpTerm(a, x, y, batch);
+        for (int y = y0; y < std::min(h, y0 + 4); ++y)
+          for (int x = 0; x < w; ++x) term(x, y, batch);
       }
-      one_by_one.Merge(chunk);
+      sum.Merge(chunk);
     }
-    EXPECT_EQ(std::memcmp(rows.v, one_by_one.v, sizeof rows.v), 0) << "level " << l;
-    EXPECT_GT(rows.icp_n(), l == 0 ? 10000 : 100);
-    EXPECT_EQ(rows.icp_n(), one_by_one.icp_n());
-  }
-  // The photometric terms likewise (each row's projections four pixels at a time, then the
-  // terms): the bits of PhotoTerm pixel by pixel.
-  o.kind = tracking::TrackerKind::kNr;
-  for (int l = 0; l < 3; ++l) {
-    const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
-    const tracking::LiveView lv = live.levels[std::size_t(l)].view();
-    tracking::GnSystem rows = tracking::AccumulateCpu(rv, ref.T_world_camera, lv, T, o);
-    const tracking::PhotoArgs a = tracking::MakePhotoArgs(rv, lv, T, o);
-    tracking::GnSystem one_by_one;
-    for (int y0 = 0; y0 < rv.cam.height; y0 += 4) {
-      tracking::GnSystem chunk;
-      {
-        tracking::TermBatch batch(chunk);
-        for (int y = y0; y < std::min(rv.cam.height, y0 + 4); ++y)
-          for (int x = 0; x < rv.cam.width; ++x) tracking::PhotoTerm(a, x, y, batch);
-      }
-      one_by_one.Merge(chunk);
+    return sum;
+  };
+  for (const auto kind : {tracking::TrackerKind::kIcp, tracking::TrackerKind::kNr}) {
+    o.kind = kind;
+    const bool icp = kind == tracking::TrackerKind::kIcp;
+    for (int l = 0; l < 3; ++l) {
+      const tracking::ReferenceView rv = ref.levels[std::size_t(l)].view();
+      const tracking::LiveView lv = live.levels[std::size_t(l)].view();
+      tracking::GnSystem rows = tracking::AccumulateCpu(rv, ref.T_world_camera, lv, T, o);
+      const tracking::IcpArgs ia = tracking::MakeIcpArgs(rv, ref.T_world_camera, lv, T, o);
+      const tracking::PhotoArgs pa = tracking::MakePhotoArgs(rv, lv, T, o);
+      tracking::GnSystem one_by_one =
+          icp ? pixel_by_pixel(lv.cam.width, lv.cam.height,
+                               [&](int x, int y, tracking::TermBatch& b) { tracking::IcpTerm(ia, x, y, b); })
+              : pixel_by_pixel(rv.cam.width, rv.cam.height,
+                               [&](int x, int y, tracking::TermBatch& b) { tracking::PhotoTerm(pa, x, y, b); });
+      EXPECT_EQ(std::memcmp(rows.v, one_by_one.v, sizeof rows.v), 0) << (icp ? "icp" : "photometric") << ", level " << l;
+      const std::size_t n = icp ? std::size_t(rows.icp_n()) : std::size_t(rows.photo_n());
+      EXPECT_GT(n, l == 0 ? 10000u : 100u);
+      EXPECT_EQ(n, icp ? std::size_t(one_by_one.icp_n()) : std::size_t(one_by_one.photo_n()));
     }
-    EXPECT_EQ(std::memcmp(rows.v, one_by_one.v, sizeof rows.v), 0) << "level " << l;
-    EXPECT_GT(rows.photo_n(), l == 0 ? 10000 : 100);
-    EXPECT_EQ(rows.photo_n(), one_by_one.photo_n());
   }
 }
 
