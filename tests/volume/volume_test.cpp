@@ -22,6 +22,7 @@
 #include "radiometry/radiance.h"
 #include "sim/builtin_sensor.h"
 #include "volume/volume.h"
+#include "volume/project_brick.h"
 #include "volume/raycast_driver.h"
 #include "volume/volume_impl.h"
 #include "eval/eval.h"
@@ -198,6 +199,54 @@ void ForEachEncodingFused(const std::vector<sim::SimFrame>& frames, const Pinhol
 // The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
 // gives exactly the bits of the general way (each corner's brick found on its own), with and
 // without a hint, for every encoding: the ray cast and the tracker's reference do not change.
+// The CPU integration's first pass takes a brick's voxels four at a time (ProjectBrick): the
+// same voxels, in the same order, with the same camera positions, pixels and distances, bit
+// for bit, as ProjectVoxel one by one (what the GPU runs). Poses that put bricks behind the
+// camera, across the image's edges and straddling the depth; a depth image with holes.
+TEST(Volume, ProjectBrickGivesProjectVoxelsBits) {
+  const PinholeCamera cam = sim::SimCamera(160, 120);
+  DepthImage depth(cam.width, cam.height);
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x)
+      depth(x, y) = (x * 7 + y * 3) % 23 == 0 ? 0.f : 0.6f + 0.004f * float((x * 13 + y * 5) % 97);
+  volume::IntegrateArgs a{};
+  a.depth = View(depth);
+  a.cam = cam;
+  a.voxel_m = 0.02f;
+  a.trunc_m = 0.08f;
+  long in_view = 0, partial = 0, bricks = 0;
+  for (int p = 0; p < 6; ++p) {
+    Pose T = Pose::Identity();
+    T.rotate(Eigen::AngleAxisd(0.3 * p - 0.7, Eigen::Vector3d(0.2, 1, 0.1 * p).normalized()));
+    T.pretranslate(Eigen::Vector3d(0.05 * p - 0.1, -0.03 * p, 0.02 * p));
+    a.T_camera_world = ToRigidTransform(T);
+    for (int bz = -2; bz <= 8; ++bz)
+      for (int by = -4; by <= 3; ++by)
+        for (int bx = -5; bx <= 4; ++bx) {
+          volume::VoxelInView one[512], four[512];
+          std::int16_t at_one[512], at_four[512];
+          int n = 0;
+          for (int i = 0; i < 512; ++i)
+            if (volume::ProjectVoxel(a, bx, by, bz, i, &one[n])) at_one[n++] = std::int16_t(i);
+          const int m = volume::ProjectBrick(a, bx, by, bz, four, at_four);
+          ASSERT_EQ(m, n) << "pose " << p << ", brick " << bx << " " << by << " " << bz;
+          for (int k = 0; k < n; ++k) {
+            ASSERT_EQ(at_four[k], at_one[k]);
+            ASSERT_EQ(std::memcmp(&four[k].pc, &one[k].pc, sizeof(Float3)), 0) << "voxel " << at_one[k];
+            ASSERT_EQ(four[k].u, one[k].u);
+            ASSERT_EQ(four[k].v, one[k].v);
+            ASSERT_EQ(std::memcmp(&four[k].sdf, &one[k].sdf, sizeof(float)), 0);
+          }
+          in_view += n;
+          partial += n > 0 && n < 512;
+          ++bricks;
+        }
+  }
+  std::printf("[ figures  ] %ld bricks, %ld voxels in view, %ld bricks partly\n", bricks, in_view, partial);
+  EXPECT_GT(in_view, 20000);
+  EXPECT_GT(partial, 100);
+}
+
 TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
   const auto frames = Frames(6, sim::AeMode::kFixed);
   const PinholeCamera cam = sim::SimCamera(320, 240);
