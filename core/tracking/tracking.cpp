@@ -158,27 +158,16 @@ namespace {
 // IcpProject for pixels x .. x + 3 of row y, each lane with its operations in its order (the
 // same bits); ok[k] as IcpProject's result.
 void IcpProjectFour(const IcpArgs& a, int x, int y, Float3 p[4], int ux[4], int uy[4], bool ok[4]) {
-  const Float3* v = &a.live_vertex(x, y);
-  const Float3* nl = &a.live_normal(x, y);
-  const Lanes vx = {v[0].x, v[1].x, v[2].x, v[3].x}, vy = {v[0].y, v[1].y, v[2].y, v[3].y},
-              vz = {v[0].z, v[1].z, v[2].z, v[3].z};
-  const Lanes nx = {nl[0].x, nl[1].x, nl[2].x, nl[3].x}, ny = {nl[0].y, nl[1].y, nl[2].y, nl[3].y},
-              nz = {nl[0].z, nl[1].z, nl[2].z, nl[3].z};
-  const LaneInts has = ~(vz <= 0.f) & (nx * nx + ny * ny + nz * nz != 0.f);
-  const float* r = a.T_world_live.r;
-  const Float3 t = a.T_world_live.t;
-  const Lanes px = r[0] * vx + r[1] * vy + r[2] * vz + t.x, py = r[3] * vx + r[4] * vy + r[5] * vz + t.y,
-              pz = r[6] * vx + r[7] * vy + r[8] * vz + t.z;
-  const float* q = a.T_ref_world.r;
-  const Float3 s = a.T_ref_world.t;
-  const Lanes rx = q[0] * px + q[1] * py + q[2] * pz + s.x, ry = q[3] * px + q[4] * py + q[5] * pz + s.y,
-              rz = q[6] * px + q[7] * py + q[8] * pz + s.z;
-  const LaneInts front = has & ~(rz <= 0.f);
-  const Lanes inv_z = 1.0f / rz;
+  const Lanes3 v = Lanes3::Load(&a.live_vertex(x, y)), nl = Lanes3::Load(&a.live_normal(x, y));
+  const LaneInts has = ~(v.z <= 0.f) & (nl.x * nl.x + nl.y * nl.y + nl.z * nl.z != 0.f);
+  const Lanes3 pw = Apply(a.T_world_live, v), pr = Apply(a.T_ref_world, pw);
+  const LaneInts front = has & ~(pr.z <= 0.f);
   const PinholeCamera& c = a.ref_cam;
-  const LaneInts u = RoundToIntLanes(c.fx * rx * inv_z + c.cx), w = RoundToIntLanes(c.fy * ry * inv_z + c.cy);
+  Lanes fu, fv;
+  Project(c, pr, &fu, &fv);
+  const LaneInts u = RoundToIntLanes(fu), w = RoundToIntLanes(fv);
   for (int k = 0; k < 4; ++k) {
-    p[k] = Float3{px[k], py[k], pz[k]};
+    p[k] = pw[k];
     ux[k] = u[k], uy[k] = w[k];
     ok[k] = front[k] && !(u[k] < 0 || w[k] < 0 || u[k] >= c.width || w[k] >= c.height);
   }
@@ -219,20 +208,14 @@ struct IcpRows {
 // (the same bits); ok[k] as PhotoProject's result.
 void PhotoProjectFour(const PhotoArgs& a, int x, int y, Float3 q[4], imaging::BilinearAt at[4], float i_ref[4],
                       bool ok[4]) {
-  const Float3* m = &a.ref_vertex(x, y);
+  const Lanes3 m = Lanes3::Load(&a.ref_vertex(x, y));
   const float* ir = &a.ref_intensity(x, y);
-  const Lanes mx = {m[0].x, m[1].x, m[2].x, m[3].x}, my = {m[0].y, m[1].y, m[2].y, m[3].y},
-              mz = {m[0].z, m[1].z, m[2].z, m[3].z};
   const Lanes i = {ir[0], ir[1], ir[2], ir[3]};
-  const LaneInts has = ~((mx == 0.f) & (my == 0.f) & (mz == 0.f)) & (i != 0.f);
-  const float* r = a.T_live_world.r;
-  const Float3 t = a.T_live_world.t;
-  const Lanes qx = r[0] * mx + r[1] * my + r[2] * mz + t.x, qy = r[3] * mx + r[4] * my + r[5] * mz + t.y,
-              qz = r[6] * mx + r[7] * my + r[8] * mz + t.z;
-  const LaneInts front = has & ~(qz <= 0.1f);
-  const PinholeCamera& c = a.live_cam;
-  const Lanes inv_z = 1.0f / qz;
-  const Lanes ux = c.fx * qx * inv_z + c.cx, uy = c.fy * qy * inv_z + c.cy;
+  const LaneInts has = ~((m.x == 0.f) & (m.y == 0.f) & (m.z == 0.f)) & (i != 0.f);
+  const Lanes3 qc = Apply(a.T_live_world, m);
+  const LaneInts front = has & ~(qc.z <= 0.1f);
+  Lanes ux, uy;
+  Project(a.live_cam, qc, &ux, &uy);
   // BilinearAt::Set: inside [0, size - 1.001] along both axes, then the integer and fractional parts.
   const float xmax = float(a.live_intensity.width) - 1.001f, ymax = float(a.live_intensity.height) - 1.001f;
   const LaneInts inside = front & ~((ux < 0.f) | (uy < 0.f) | (ux > xmax) | (uy > ymax));
@@ -240,7 +223,7 @@ void PhotoProjectFour(const PhotoArgs& a, int x, int y, Float3 q[4], imaging::Bi
   const LaneInts ix = __builtin_convertvector(inside ? ux : zero, LaneInts), iy = __builtin_convertvector(inside ? uy : zero, LaneInts);
   const Lanes ax = ux - __builtin_convertvector(ix, Lanes), ay = uy - __builtin_convertvector(iy, Lanes);
   for (int k = 0; k < 4; ++k) {
-    q[k] = Float3{qx[k], qy[k], qz[k]};
+    q[k] = qc[k];
     at[k].ix = ix[k], at[k].iy = iy[k], at[k].ax = ax[k], at[k].ay = ay[k];
     i_ref[k] = i[k];
     ok[k] = inside[k] != 0;

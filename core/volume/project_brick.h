@@ -14,30 +14,28 @@ namespace hdrf::volume {
 // lane with ProjectVoxel's operations in its order: the same bits.
 inline int ProjectBrick(const IntegrateArgs& a, int bx, int by, int bz, VoxelInView* seen, std::int16_t* at) {
   const float vs = a.voxel_m, trunc = a.trunc_m;
-  const float* r = a.T_camera_world.r;
-  const Float3 t = a.T_camera_world.t;
   const PinholeCamera& cam = a.cam;
   int n = 0;
   for (int lz = 0; lz < 8; ++lz)
     for (int ly = 0; ly < 8; ++ly) {
       const float wy = (float(by * 8 + ly) + 0.5f) * vs, wz = (float(bz * 8 + lz) + 0.5f) * vs;
-      const float yx = r[1] * wy, zx = r[2] * wz, yy = r[4] * wy, zy = r[5] * wz, yz = r[7] * wy, zz = r[8] * wz;
       for (int x0 = 0; x0 < 8; x0 += 4) {
         const int gx = bx * 8 + x0;
         const LaneInts ix = {gx, gx + 1, gx + 2, gx + 3};
         const Lanes wx = (__builtin_convertvector(ix, Lanes) + 0.5f) * vs;
-        const Lanes px = r[0] * wx + yx + zx + t.x, py = r[3] * wx + yy + zy + t.y, pz = r[6] * wx + yz + zz + t.z;
-        const LaneInts front = pz > 0.05f;  // (ProjectVoxel: not <= 0.05)
+        const Lanes3 pc = Apply(a.T_camera_world, Lanes3{wx, Lanes{wy, wy, wy, wy}, Lanes{wz, wz, wz, wz}});
+        const LaneInts front = pc.z > 0.05f;  // (ProjectVoxel: not <= 0.05)
         if (!(front[0] | front[1] | front[2] | front[3])) continue;
-        const Lanes inv_z = 1.0f / pz;
-        const LaneInts u = RoundToIntLanes(cam.fx * px * inv_z + cam.cx), v = RoundToIntLanes(cam.fy * py * inv_z + cam.cy);
+        Lanes fu, fv;
+        Project(cam, pc, &fu, &fv);
+        const LaneInts u = RoundToIntLanes(fu), v = RoundToIntLanes(fv);
         for (int k = 0; k < 4; ++k) {
           if (!front[k] || u[k] < 0 || v[k] < 0 || u[k] >= cam.width || v[k] >= cam.height) continue;
           const float zd = a.depth(u[k], v[k]);
           if (!(zd > 0.f)) continue;
-          const float sdf = zd - pz[k];
+          const float sdf = zd - pc.z[k];
           if (sdf < -trunc) continue;
-          seen[n] = {Float3{px[k], py[k], pz[k]}, u[k], v[k], sdf};
+          seen[n] = {pc[k], u[k], v[k], sdf};
           at[n++] = std::int16_t(lz * 64 + ly * 8 + x0 + k);
         }
       }
