@@ -68,7 +68,12 @@ OutputFile::OutputFile(fs::path target) : target_(std::move(target)) {
   CheckReplaceable(target_);
   const fs::path folder = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
   for (int attempt = 0; attempt < 64; ++attempt) {
-    const fs::path name = folder / ("." + target_.filename().string() + "." + RandomChars() + kSuffix);
+    std::string hidden = ".";  // (appended piece by piece: GCC 12 warns falsely on "." + string&&)
+    hidden += target_.filename().string();
+    hidden += '.';
+    hidden += RandomChars();
+    hidden += kSuffix;
+    const fs::path name = folder / hidden;
     const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd >= 0) {
       staging_ = name;

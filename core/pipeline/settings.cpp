@@ -278,8 +278,10 @@ std::vector<Setting> MakeSettings() {
     it.expert = true;
     it.get = [](const PipelineOptions& o) {
       std::string t;
-      for (int i = 0; i < 4; ++i)
-        t += (i ? "," : "") + std::to_string(o.tracker.iterations[std::size_t(i)]);
+      for (int i = 0; i < 4; ++i) {
+        if (i) t += ',';
+        t += std::to_string(o.tracker.iterations[std::size_t(i)]);
+      }
       return t;
     };
     it.set = [self = it](PipelineOptions& o, const std::string& text) {
