@@ -13,7 +13,6 @@
 
 namespace hdrf::volume {
 
-
 VoxelEncoding ParseVoxelEncoding(const std::string& s) {
   if (s == "full") return VoxelEncoding::kFull;
   if (s == "no-nr") return VoxelEncoding::kNoNr;

@@ -196,9 +196,6 @@ void ForEachEncodingFused(const std::vector<sim::SimFrame>& frames, const Pinhol
   }
 }
 
-// The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
-// gives exactly the bits of the general way (each corner's brick found on its own), with and
-// without a hint, for every encoding: the ray cast and the tracker's reference do not change.
 // The CPU integration's first pass takes a brick's voxels four at a time (ProjectBrick): the
 // same voxels, in the same order, with the same camera positions, pixels and distances, bit
 // for bit, as ProjectVoxel one by one (what the GPU runs). Poses that put bricks behind the
@@ -247,6 +244,9 @@ TEST(Volume, ProjectBrickGivesProjectVoxelsBits) {
   EXPECT_GT(partial, 100);
 }
 
+// The trilinear samples' short way (a cell inside one brick: one look-up, fixed offsets)
+// gives exactly the bits of the general way (each corner's brick found on its own), with and
+// without a hint, for every encoding: the ray cast and the tracker's reference do not change.
 TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
   const auto frames = Frames(6, sim::AeMode::kFixed);
   const PinholeCamera cam = sim::SimCamera(320, 240);
