@@ -22,6 +22,7 @@ namespace hdrf::volume {
 struct BrickCoord {
   int x, y, z;
 };
+struct NewBricks;  // the new bricks the integration places itself (volume_cuda.cu)
 
 // RaycastGuide (raycast_driver.h) on the GPU: device views.
 void RaycastGuideOnGpu(ImageView<const float> depth, float margin_m, const ImageView<float>& tiles);
@@ -112,7 +113,9 @@ class DeviceVolume {
   // Step 3 of Integrate on the host: the `wanted` new bricks (in fresh_) take slots up to
   // the limits, their to-do entries after those there are; the number placed.
   int PlaceOnHost(int wanted);
-  // The to-do list's bricks from entry `first` on (to its count on the device) fused.
+  // The to-do list's bricks from entry `first` on (to its count on the device) fused, then
+  // the new bricks of `nb` placed and fused (the device's path; none by default).
+  void IntegrateFrom(const IntegrateArgs& a, int first, const NewBricks& nb);
   void IntegrateFrom(const IntegrateArgs& a, int first);
   void FillDefaultSlots(int first);  // pool slots [first, capacity_): fresh voxels
   void Settled() const;            // throws where an Integrate is not settled

@@ -15,6 +15,28 @@
 
 namespace hdrf::volume {
 
+// The tables a new brick enters (PlaceBrick).
+struct PlaceTables {
+  std::uint64_t *keys, *gkeys;
+  int *values, *gvalues;
+  std::uint32_t mask;
+  BrickCoord* coords;
+  int* todo;
+};
+// The frame's new bricks as the integration places them itself (the device's path, no host
+// in between): the counts[1] keys of `fresh` take slots base + their rank in key order (as on
+// the host and the CPU), all of them or, where they are more than `room`, none (counts[3]
+// says so; DeviceVolume::Settle places them). counts[4]: the number placed. The frame's set
+// (`set`, each visible key's entry at `set_at`) is emptied for the next frame.
+struct NewBricks {
+  const std::uint64_t* fresh = nullptr;  // null: the host's path (placed and emptied before)
+  int room = 0, base = 0;
+  PlaceTables t{};
+  int* box = nullptr;
+  std::uint64_t* set = nullptr;
+  const std::uint32_t* set_at = nullptr;
+};
+
 namespace {
 using ull = unsigned long long;
 int place_limit = DeviceVolume::kPlaceMost;  // SetDevicePlaceLimit
@@ -45,27 +67,6 @@ __device__ bool InsertKey(std::uint64_t* keys, int* values, std::uint32_t mask, 
     h = (h + 1) & mask;
   }
   return false;  // full: never, the tables are kept at most half full
-}
-
-// One block of 512 threads per visible brick (a voxel each), blocks striding over the list.
-// The to-do list's entries from `first` to its count (counts[2], read on the device); each
-// brick is flagged as changed (CopyChanged).
-template <typename V>
-__global__ void IntegrateBricksKernel(IntegrateArgs a, V* pool, const BrickCoord* coords, const int* todo,
-                                      const int* counts, int first, std::uint8_t* dirty) {
-  const int n_todo = counts[2];
-  for (int k = first + int(blockIdx.x); k < n_todo; k += gridDim.x) {
-    const int slot = todo[k];
-    if (threadIdx.x == 0) dirty[slot] = 1;
-    const BrickCoord bc = coords[slot];
-    IntegrateVoxel(a, bc.x, bc.y, bc.z, threadIdx.x, pool[long(slot) * 512 + threadIdx.x]);
-  }
-}
-template <typename V>
-void IntegrateBricks(const IntegrateArgs& a, V* pool, const BrickCoord* coords, const int* todo, const int* counts,
-                     int first, std::uint8_t* dirty) {
-  IntegrateBricksKernel<V><<<1024, 512>>>(a, pool, coords, todo, counts, first, dirty);
-  HDRF_CUDA_CHECK_LAUNCH();
 }
 
 // The box of the allocated bricks as the device keeps it (DeviceVolume::device_box).
@@ -134,17 +135,6 @@ __global__ void __launch_bounds__(kRankSortMost) RankSortKernel(const std::uint6
   for (int i = threadIdx.x; i < n; i += blockDim.x) out[RankOf(k, n, i)] = k[i];
 }
 
-// A frame's new bricks (counts[1] of them in `fresh`) placed without the host: each takes
-// slot base + its rank (key order, as on the host and the CPU), enters the tables, the box
-// and the to-do list. Where they are more than `room`, nothing is placed and counts[3] says
-// so (DeviceVolume::Settle places them). counts[4]: the number placed.
-struct PlaceTables {
-  std::uint64_t *keys, *gkeys;
-  int *values, *gvalues;
-  std::uint32_t mask;
-  BrickCoord* coords;
-  int* todo;
-};
 // A new brick into `slot`: its coordinates, the brick and group tables, the box.
 __device__ void PlaceBrick(const PlaceTables& t, std::uint64_t key, int slot, int* box) {
   BrickCoord c;
@@ -154,26 +144,69 @@ __device__ void PlaceBrick(const PlaceTables& t, std::uint64_t key, int slot, in
   InsertKey(t.gkeys, t.gvalues, t.mask, GroupKey(c.x, c.y, c.z), 1);
   AddToBox(box, c);
 }
-__global__ void __launch_bounds__(DeviceVolume::kPlaceMost)
-    PlaceNewKernel(const std::uint64_t* fresh, int room, int base, PlaceTables t, int* counts, int* box) {
-  __shared__ std::uint64_t k[DeviceVolume::kPlaceMost];
-  const int n = counts[1], first_todo = counts[2], i = int(threadIdx.x);
-  if (n > room) {  // (n is the same for the whole block)
-    if (i == 0) counts[3] = 1;
-    return;
-  }
-  if (i < n) k[i] = fresh[i];
+
+// A key's rank among k[0..n) (RankOf) counted by a whole block; every thread gets it.
+__device__ int BlockRankOf(const std::uint64_t* k, int n, int i, int* shared_sum) {
+  const std::uint64_t v = k[i];
+  int part = 0;
+  for (int j = int(threadIdx.x); j < n; j += int(blockDim.x)) part += (k[j] < v || (k[j] == v && j < i)) ? 1 : 0;
+  for (int d = 16; d > 0; d /= 2) part += __shfl_down_sync(0xffffffffu, part, d);
+  if (threadIdx.x == 0) *shared_sum = 0;
   __syncthreads();
-  if (i < n) {
-    const int rank = RankOf(k, n, i);
-    PlaceBrick(t, k[i], base + rank, box);
-    t.todo[first_todo + rank] = base + rank;
+  if ((threadIdx.x & 31) == 0) atomicAdd(shared_sum, part);
+  __syncthreads();
+  const int rank = *shared_sum;
+  __syncthreads();  // (read by all before the next brick sets it again)
+  return rank;
+}
+
+// One block of 512 threads per brick (a voxel each), blocks striding over the to-do list's
+// entries from `first` to its count (counts[2], read on the device), then, on the device's
+// path, over the new bricks, each placed by its block first. Each brick is flagged as
+// changed (CopyChanged).
+template <typename V>
+__global__ void __launch_bounds__(512) IntegrateBricksKernel(IntegrateArgs a, V* pool, const BrickCoord* coords,
+                                                             const int* todo, int* counts, int first,
+                                                             std::uint8_t* dirty, NewBricks nb) {
+  __shared__ int rank_sum;
+  const int n_todo = counts[2];
+  int n_new = 0;
+  if (nb.fresh) {
+    const int wanted = counts[1];
+    n_new = wanted <= nb.room ? wanted : 0;
+    if (blockIdx.x == 0 && threadIdx.x == 0) {
+      if (wanted > nb.room) counts[3] = 1;
+      else counts[4] = wanted;
+    }
+    const int n_visible = counts[0];
+    for (int i = int(blockIdx.x * blockDim.x + threadIdx.x); i < n_visible; i += int(gridDim.x * blockDim.x))
+      nb.set[nb.set_at[i]] = kEmptyKey;
   }
-  __syncthreads();  // (every thread has read counts[2])
-  if (i == 0) {
-    counts[2] = first_todo + n;
-    counts[4] = n;
+  for (int k = first + int(blockIdx.x); k < n_todo + n_new; k += int(gridDim.x)) {
+    int slot;
+    BrickCoord bc;
+    if (k < n_todo) {
+      slot = todo[k];
+      bc = coords[slot];
+    } else {
+      const int rank = BlockRankOf(nb.fresh, n_new, k - n_todo, &rank_sum);
+      const std::uint64_t key = nb.fresh[k - n_todo];
+      slot = nb.base + rank;
+      DecodeBrickKey(key, &bc.x, &bc.y, &bc.z);
+      if (threadIdx.x == 0) {
+        PlaceBrick(nb.t, key, slot, nb.box);
+        nb.t.todo[n_todo + rank] = slot;
+      }
+    }
+    if (threadIdx.x == 0) dirty[slot] = 1;
+    IntegrateVoxel(a, bc.x, bc.y, bc.z, int(threadIdx.x), pool[long(slot) * 512 + threadIdx.x]);
   }
+}
+template <typename V>
+void IntegrateBricks(const IntegrateArgs& a, V* pool, const BrickCoord* coords, const int* todo, int* counts,
+                     int first, std::uint8_t* dirty, const NewBricks& nb) {
+  IntegrateBricksKernel<V><<<1024, 512>>>(a, pool, coords, todo, counts, first, dirty, nb);
+  HDRF_CUDA_CHECK_LAUNCH();
 }
 
 // `n` new bricks, sorted, into slots base.. (the host's way: Integrate without room on the
@@ -270,17 +303,30 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
     fresh_sorted_ = DeviceBuffer<std::uint64_t>(most);
     todo_ = DeviceBuffer<int>(most);
     frame_set_ = DeviceBuffer<std::uint64_t>(PowerOfTwoAtLeast(2 * most));
-    // Empty once: each frame empties the entries it filled (SplitKeys).
+    // Empty once: each frame empties the entries it filled (SplitKeys or the integration).
     HDRF_CUDA_CHECK(cudaMemsetAsync(frame_set_.data(), 0xff, frame_set_.size() * sizeof(std::uint64_t), 0));
     std::size_t sort_bytes = 0;
     HDRF_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, fresh_.data(), fresh_sorted_.data(), int(most)));
     temp_ = DeviceBuffer<std::uint8_t>(std::max(sort_bytes, std::size_t(16)));
   }
   HDRF_CUDA_CHECK(cudaMemsetAsync(counts_.data(), 0, kBoxAt * sizeof(int), 0));
+  const int gpu_budget = int(options().gpu_bricks());
+  // The device places the new bricks itself where it can: up to a block's worth, within the
+  // pool's room, the tables' half and the memory limit; no GPU budget (its bookkeeping is
+  // the host's). Then the whole frame is queued without a wait, each visible key split as
+  // it is found (the model's bricks to the to-do list, the others to `fresh`), and the new
+  // bricks placed by the integration's blocks. Settle reads the counts (or places what the
+  // device could not).
+  const int room = std::min({place_limit, capacity_ - allocated_, int((keys_.size() - 2) / 2) - allocated_,
+                             int(mirror_.max_bricks()) - allocated_});
+  const bool on_device = gpu_budget <= 0 && host_.empty() && full_reason_.empty() && room > 0;
   std::uint64_t* set = frame_set_.data();
   std::uint64_t* visible = visible_.data();
   std::uint32_t* visible_at = visible_at_.data();
+  std::uint64_t* fresh = on_device ? fresh_.data() : nullptr;
+  int* todo = todo_.data();
   int* counts = counts_.data();
+  const HashView table{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)};
   const std::uint32_t set_mask = std::uint32_t(frame_set_.size() - 1);
   const RigidTransform Twc = ToRigidTransform(T);
   par::ForEachPixel(par::Gpu{}, rw, rh, [=] __device__(int x, int y) {
@@ -294,25 +340,26 @@ void DeviceVolume::Integrate(const IntegrateArgs& a, const Pose& T) {
         const int i = atomicAdd(counts, 1);
         visible[i] = k;
         visible_at[i] = at;
+        if (!fresh) return;
+        const int slot = table.Find(k);
+        if (slot >= 0) todo[atomicAdd(counts + 2, 1)] = slot;
+        else fresh[atomicAdd(counts + 1, 1)] = k;
       }
     });
   });
   ++frame_;
   mirror_fresh_ = false;
-  const int gpu_budget = int(options().gpu_bricks());
-  // 2-4 queued without a wait where the device can place the new bricks: up to a block's
-  // worth, within the pool's room, the tables' half and the memory limit; no GPU budget (its
-  // bookkeeping is the host's). Settle reads the counts (or places what the device could not).
-  const int room = std::min({place_limit, capacity_ - allocated_, int((keys_.size() - 2) / 2) - allocated_,
-                             int(mirror_.max_bricks()) - allocated_});
-  if (gpu_budget <= 0 && host_.empty() && full_reason_.empty() && room > 0) {
-    SplitKeys(HashView{keys_.data(), values_.data(), std::uint32_t(keys_.size() - 1)}, visible_.data(),
-              int(visible_.size()), counts_.data(), fresh_.data(), todo_.data(), frame_set_.data(), visible_at_.data());
-    const PlaceTables t{keys_.data(), group_keys_.data(), values_.data(), group_values_.data(),
-                        std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()};
-    PlaceNewKernel<<<1, kPlaceMost>>>(fresh_.data(), room, allocated_, t, counts_.data(), counts_.data() + kBoxAt);
-    HDRF_CUDA_CHECK_LAUNCH();
-    IntegrateFrom(a, 0);
+  if (on_device) {
+    NewBricks nb;
+    nb.fresh = fresh_.data();
+    nb.room = room;
+    nb.base = allocated_;
+    nb.t = PlaceTables{keys_.data(), group_keys_.data(), values_.data(), group_values_.data(),
+                       std::uint32_t(keys_.size() - 1), coords_.data(), todo_.data()};
+    nb.box = counts_.data() + kBoxAt;
+    nb.set = frame_set_.data();
+    nb.set_at = visible_at_.data();
+    IntegrateFrom(a, 0, nb);
     pending_args_ = a;
     pending_ = true;
     counts_queued_ = false;  // (QueueCounts: behind the next ray cast's start, or in Settle)
@@ -359,7 +406,7 @@ bool DeviceVolume::Settle(cudaEvent_t after) {
   ReadBoxFrom(c + kBoxAt);
   if (!c[3]) {
     allocated_ += c[4];
-    last_visible_ = c[2];
+    last_visible_ = c[2] + c[4];
     return false;
   }
   // The device left the new bricks (more than it places at once, or than the pool had room
@@ -373,12 +420,13 @@ bool DeviceVolume::Settle(cudaEvent_t after) {
   return true;
 }
 
-void DeviceVolume::IntegrateFrom(const IntegrateArgs& a, int first) {
+void DeviceVolume::IntegrateFrom(const IntegrateArgs& a, int first, const NewBricks& nb) {
   VisitEncoding(options().encoding, [&](auto tag) {
     IntegrateBricks<decltype(tag)>(a, reinterpret_cast<decltype(tag)*>(pool_.data()), coords_.data(), todo_.data(),
-                                   counts_.data(), first, dirty_.data());
+                                   counts_.data(), first, dirty_.data(), nb);
   });
 }
+void DeviceVolume::IntegrateFrom(const IntegrateArgs& a, int first) { IntegrateFrom(a, first, NewBricks{}); }
 
 void DeviceVolume::FillDefaultSlots(int first) {
   VisitEncoding(options().encoding, [&](auto tag) {
