@@ -19,6 +19,7 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
   constexpr int kWarmup = 5;
   // Each device's copy bandwidth, measured once for the whole table.
   double bandwidth[2] = {-1, -1}, bus = -1;
+  std::array<double, 4> least_stage_ms{-1, -1, -1, -1};
   for (const BenchCase& c : o.cases) {
     sim::SimOptions so;
     so.width = c.width;
@@ -85,6 +86,10 @@ std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
         row.bandwidth = bw;
         if (dev == Device::kCuda) {
           if (bus < 0) bus = CudaUploadBandwidth();
+          if (least_stage_ms[0] < 0)
+            for (std::size_t i = 0; i < least_stage_ms.size(); ++i)
+              least_stage_ms[i] = 1e3 * CudaLeastStageSeconds(kLeastStageLaunches[i]);
+          row.least_stage_ms = least_stage_ms;
           row.upload_bytes = UploadBytes(c.width, c.height);
           row.bus_bandwidth = bus;
         }
@@ -241,6 +246,36 @@ double CpuCopyBandwidth() {
   return best;
 }
 
+std::string EngineLeastStageTable(const std::vector<EngineBenchRow>& rows) {
+  std::string out;
+  char line[512];
+  std::array<double, 4> least{};
+  for (const auto& r : rows) {
+    if (r.least_stage_ms[0] <= 0) continue;
+    least = r.least_stage_ms;  // (measured once a run: the same in every GPU row)
+    const StageTimes floors = StageFloorMs(r);
+    for (const StageField& s : kFloorStages) {
+      const double five = 5 * (floors.*s.field);
+      int fit = 0;  // the most launches (of kLeastStageLaunches) that take no longer than 5 x floor
+      for (std::size_t i = 0; i < kLeastStageLaunches.size(); ++i)
+        if (r.least_stage_ms[i] <= five) fit = kLeastStageLaunches[i];
+      char fits[16];
+      std::snprintf(fits, sizeof fits, fit == kLeastStageLaunches.back() ? "%d or more" : "%d", fit);
+      std::snprintf(line, sizeof line, "| %s | %s | %dx%d | %s | %.3f | %.4f | %s |\n", DeviceName(r.device),
+                    volume::VoxelEncodingName(r.encoding), r.c.width, r.c.height, s.name, r.ms.*s.field, five, fits);
+      out += line;
+    }
+  }
+  if (out.empty()) return out;
+  std::snprintf(line, sizeof line,
+                "\nThe least a stage takes as the stages are timed (the device waited for before and after) with 1, 2, 4 "
+                "and 8 of the smallest operations queued one behind another: %.4f, %.4f, %.4f, %.4f ms. How many "
+                "launches fit in 5x each stage's floor:\n\n",
+                least[0], least[1], least[2], least[3]);
+  return line + std::string("| device | voxel | size | stage | ms | 5 x floor ms | launches that fit in it |\n"
+                            "|---|---|---|---|---|---|---|\n") + out;
+}
+
 std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
   std::string out =
       "| device | voxel | size | copy GB/s | bus GB/s | stage | ms | least MB moved | MB over the bus | floor ms | x floor |\n"
@@ -262,6 +297,7 @@ std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
       out += line;
     }
   }
+  out += EngineLeastStageTable(rows);
   const std::string margins = EngineMarginTable(rows);
   if (!margins.empty())
     out += "\nHow each stage's time grows with its floor from the smaller frame to the larger (time = fixed + k x floor "

@@ -57,7 +57,12 @@ struct EngineBenchRow {
   // device waited for only where a result is read back): the mean wall time per frame, and
   // the largest distance between the two runs' poses (0: the same scan).
   double untimed_wall_ms = 0, untimed_pose_diff_m = 0;
+  // On the GPU: the least time a stage of 1, 2, 4 and 8 launches takes as the stages are
+  // timed (CudaLeastStageSeconds), ms; 0 on the CPU.
+  std::array<double, 4> least_stage_ms{};
 };
+// The launch counts of EngineBenchRow::least_stage_ms.
+inline constexpr std::array<int, 4> kLeastStageLaunches = {1, 2, 4, 8};
 
 // Runs every device x case; `progress` is told each finished row.
 std::vector<EngineBenchRow> RunEngineBench(const EngineBenchOptions& o,
@@ -68,6 +73,9 @@ std::string EngineBenchTable(const std::vector<EngineBenchRow>& rows);
 // bytes the stage must read and write per frame, the time they take at the device's
 // measured copy bandwidth, and how many times that the stage takes.
 std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows);
+// Markdown table, GPU rows only (empty without): how many of the smallest launches, timed as
+// the stages are, fit in five times each stage's floor (EngineBenchRow::least_stage_ms).
+std::string EngineLeastStageTable(const std::vector<EngineBenchRow>& rows);
 
 // The least bytes each stage moves for one frame of `width` x `height` pixels: convert reads
 // colour and depth and writes radiance, confidence and depth (27 B a pixel); normalize reads

@@ -103,6 +103,24 @@ double CudaUploadBandwidth() {
   return best;
 }
 
+double CudaLeastStageSeconds(int operations) {
+  if (!CudaAvailable() || operations < 1) return 0;
+  void* word = cuda::Malloc(4);
+  std::vector<double> tries;
+  cudaError_t err = cudaSuccess;
+  for (int k = 0; k < 210 && err == cudaSuccess; ++k) {
+    err = cudaDeviceSynchronize();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < operations && err == cudaSuccess; ++i) err = cudaMemsetAsync(word, 0, 4, 0);
+    if (err == cudaSuccess) err = cudaDeviceSynchronize();
+    if (k >= 10) tries.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());  // (10 to warm up)
+  }
+  cuda::Free(word);
+  HDRF_CUDA_CHECK(err);
+  std::nth_element(tries.begin(), tries.begin() + std::ptrdiff_t(tries.size() / 2), tries.end());
+  return tries[tries.size() / 2];
+}
+
 namespace cuda {
 void* Malloc(std::size_t bytes) {
   void* p = nullptr;

@@ -13,6 +13,7 @@ std::string CudaDeviceDescription() { return ""; }
 std::size_t CudaMemoryUsed() { return 0; }
 double CudaCopyBandwidth() { return 0; }
 double CudaUploadBandwidth() { return 0; }
+double CudaLeastStageSeconds(int) { return 0; }
 
 namespace cuda {
 void* Malloc(std::size_t) { ThrowNoCudaBackend(); }

@@ -71,12 +71,6 @@ __device__ void SetPose(const PoseD& T, IcpArgs& icp, PhotoArgs& photo) {
   photo.T_live_world = ToRigid(Inverse(T));
 }
 __device__ void SetPose(DeviceRun& s) { SetPose(s.T, s.icp, s.photo); }
-// The term arguments of a level at the run's current pose.
-__device__ void StartLevel(DeviceTrack* d, int level) {
-  d->run.icp = d->frame.icp[level];
-  d->run.photo = d->frame.photo[level];
-  SetPose(d->run);
-}
 // The next level to run after `level` (finer, with iterations), or -1.
 __device__ int NextLevel(const RunShape& g, int level) {
   for (int l = level - 1; l >= 0; --l)
@@ -172,6 +166,15 @@ __device__ void CopyThroughL2(const T* from, T* to) {
   unsigned* t = reinterpret_cast<unsigned*>(to);
   for (int i = threadIdx.x; i < int(sizeof(T) / sizeof(unsigned)); i += blockDim.x) t[i] = __ldcg(f + i);
 }
+// The term arguments of a level at the run's current pose, made by a whole block (every
+// thread calls it): the level's arguments copied a word a thread, then the pose's parts set
+// by the first thread. (One thread copying them took about 5 us a level on an H100.)
+__device__ void StartLevel(DeviceTrack* d, int level) {
+  CopyThroughL2(&d->frame.icp[level], &d->run.icp);
+  CopyThroughL2(&d->frame.photo[level], &d->run.photo);
+  __syncthreads();
+  if (threadIdx.x == 0) SetPose(d->run);
+}
 
 // One sum block's partial sums of a level's terms. Not inlined, nor is the step: each is
 // given the registers it needs, not the other's too.
@@ -239,8 +242,8 @@ __global__ void __launch_bounds__(kThreads) RunKernel(DeviceTrack* d, RunShape g
   const int idle_from = level >= 0 ? SumBlocks(g.width[level] * g.height[level]) : blocks;
   const bool idle_count = idle_from < blocks;
   if (!idle_count) CountValid(d->frame.icp[0], g.width[0], g.height[0], block, blocks, counts, block_counts);
-  if (lead && threadIdx.x == 0) {
-    StartRun(d);
+  if (lead) {
+    if (threadIdx.x == 0) StartRun(d);
     if (level >= 0) StartLevel(d, level);
   }
   if (level < 0) grid.sync();  // (no step: the counts are read below)
@@ -267,13 +270,11 @@ __global__ void __launch_bounds__(kThreads) RunKernel(DeviceTrack* d, RunShape g
     if (lead) {
       par::detail::AddPartials<K>(nb, partial, group_sum, sums);
       const bool more = StepOnBlock(d->run, d->frame.prior, sums, level, cap, step);
-      if (threadIdx.x == 0) {
-        if (!more) {
-          const int next = NextLevel(g, level);
-          if (next >= 0) StartLevel(d, next);
-        }
-        d->go = more ? 1 : 0;
-      }
+      if (threadIdx.x == 0) go = more ? 1 : 0;  // (the answer is thread 0's)
+      __syncthreads();
+      const int next = go ? -1 : NextLevel(g, level);
+      if (next >= 0) StartLevel(d, next);
+      if (threadIdx.x == 0) d->go = go;
     }
     grid.sync();
     if (threadIdx.x == 0) go = __ldcg(&d->go);

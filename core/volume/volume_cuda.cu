@@ -199,7 +199,11 @@ __global__ void __launch_bounds__(512) IntegrateBricksKernel(IntegrateArgs a, V*
       }
     }
     if (threadIdx.x == 0) dirty[slot] = 1;
-    IntegrateVoxel(a, bc.x, bc.y, bc.z, int(threadIdx.x), pool[long(slot) * 512 + threadIdx.x]);
+    // The voxel is read first, its wait beside the image reads', and written back where
+    // it changed.
+    V& stored = pool[long(slot) * 512 + threadIdx.x];
+    V voxel = stored;
+    if (IntegrateVoxel(a, bc.x, bc.y, bc.z, int(threadIdx.x), voxel)) stored = voxel;
   }
 }
 template <typename V>

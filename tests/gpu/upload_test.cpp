@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -70,6 +71,21 @@ TEST(GpuUpload, TwoPartsArriveEachWhole) {
     }
   }
   omp_set_num_threads(threads);
+}
+
+// The least time of a stage as the pipeline times it: above nothing, below a millisecond, and
+// longer with eight launches one behind another than with one (each queued operation costs
+// device time); none asked for, none taken.
+TEST(GpuRuntime, LeastStageTimeGrowsWithItsLaunches) {
+  std::string why;
+  if (!CudaAvailable(&why)) GTEST_SKIP() << "CUDA not usable here: " << why;
+  const double one = CudaLeastStageSeconds(1), eight = CudaLeastStageSeconds(8);
+  std::printf("least stage: 1 launch %.2f us, 8 launches %.2f us\n", 1e6 * one, 1e6 * eight);
+  EXPECT_GT(one, 0.0);
+  EXPECT_LT(one, 1e-3);
+  EXPECT_GT(eight, one);
+  EXPECT_LT(eight, 8e-3);
+  EXPECT_EQ(CudaLeastStageSeconds(0), 0.0);
 }
 
 }  // namespace
