@@ -544,29 +544,6 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       if (UsesPhoto(o_.tracker.kind)) Push(photo_residuals_, rep.tracking.rms_photo);
     }
     if (verdict.drift != 0) Push(exposure_drifts_, verdict.drift);
-    if (o_.reloc.enabled && WantsKeyframe(pose_)) {  // (the entry being made, if any, is in now)
-      Backend::FrameReadback frame;
-      if (code.empty() && device_ == Device::kCuda && b.ReadBackFrame(&frame)) {
-        // The GPU runs the frame; the CPU's cores are free: the entry is made beside the
-        // next frames (the same entry, added before any other and before it is looked up),
-        // from the frame read back from the GPU (this thread neither waits nor copies: a
-        // copy of a 640x480 frame here took longer than the GPU's whole frame). The read-back
-        // memory is reused at the next entry, made only once this one is settled.
-        keyframe_pose_ = pose_;
-        keyframe_ = std::async(std::launch::async, [index = rep.index, T = pose_, frame, w = cam_.width,
-                                                    h = cam_.height, inverse = &inverse_] {
-                      frame.wait();
-                      ColorImage color(w, h);
-                      DepthImage depth(w, h);
-                      std::copy_n(frame.color, color.size(), color.data());
-                      std::copy_n(frame.depth, depth.size(), depth.data());
-                      return RelocEntry(index, T, MakeRelocCode(color, depth, *inverse), Thumbnail(color));
-                    }).share();
-      } else {
-        reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),
-                    Thumbnail(in.color)});
-      }
-    }
   }
   const auto t5 = now();
   // 6. Ray cast the model from the pose, and the next frame's reference: the ray cast (frame
@@ -574,6 +551,32 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   // A fused frame's depth was taken at this pose: the rays start near the surface it shows.
   if (rep.fused || accepted || searched || !b.HasRender())
     b.Raycast(pose_, rep.fused ? Backend::RaycastStart::kDepth : Backend::RaycastStart::kNear);
+  // A fused frame may become a relocalisation entry: made once the ray cast is queued, so that
+  // on the GPU this thread's part runs beside the ray cast rather than holding it back (timed
+  // with the ray cast's stage).
+  if (rep.fused && o_.reloc.enabled && WantsKeyframe(pose_)) {  // (the entry being made, if any, is in now)
+    Backend::FrameReadback frame;
+    if (code.empty() && device_ == Device::kCuda && b.ReadBackFrame(&frame)) {
+      // The GPU runs the frame; the CPU's cores are free: the entry is made beside the
+      // next frames (the same entry, added before any other and before it is looked up),
+      // from the frame read back from the GPU (this thread neither waits nor copies: a
+      // copy of a 640x480 frame here took longer than the GPU's whole frame). The read-back
+      // memory is reused at the next entry, made only once this one is settled.
+      keyframe_pose_ = pose_;
+      keyframe_ = std::async(std::launch::async, [index = rep.index, T = pose_, frame, w = cam_.width,
+                                                  h = cam_.height, inverse = &inverse_] {
+                    frame.wait();
+                    ColorImage color(w, h);
+                    DepthImage depth(w, h);
+                    std::copy_n(frame.color, color.size(), color.data());
+                    std::copy_n(frame.depth, depth.size(), depth.data());
+                    return RelocEntry(index, T, MakeRelocCode(color, depth, *inverse), Thumbnail(color));
+                  }).share();
+    } else {
+      reloc_.Add({rep.index, pose_, code.empty() ? MakeRelocCode(in.color, in.depth_m, inverse_) : std::move(code),
+                  Thumbnail(in.color)});
+    }
+  }
   // The model's counts once the ray cast is queued (the GPU's integration may still be
   // running: the host waits for it here, with the ray cast queued behind it).
   rep.allocated_bricks = b.AllocatedBricks();
