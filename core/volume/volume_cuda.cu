@@ -193,10 +193,7 @@ __global__ void __launch_bounds__(512) IntegrateBricksKernel(IntegrateArgs a, V*
       const std::uint64_t key = nb.fresh[k - n_todo];
       slot = nb.base + rank;
       DecodeBrickKey(key, &bc.x, &bc.y, &bc.z);
-      if (threadIdx.x == 0) {
-        PlaceBrick(nb.t, key, slot, nb.box);
-        nb.t.todo[n_todo + rank] = slot;
-      }
+      if (threadIdx.x == 0) PlaceBrick(nb.t, key, slot, nb.box);  // (no to-do entry: only the host's path reads them)
     }
     if (threadIdx.x == 0) dirty[slot] = 1;
     // The voxel is read first, its wait beside the image reads', and written back where
