@@ -154,7 +154,7 @@ class Volume {
   };
   IntegrateStats Integrate(const FrameInput& in);
 
-  // Ray casting from a pose (per pixel: RaycastPixel in volume_impl.h): world vertex, world normal,
+  // Ray casting from a pose (per pixel: RaycastPixel in raycast_impl.h): world vertex, world normal,
   // radiance, NR and camera depth; zero where the ray hit nothing.
   struct Rendering {
     Image<Float3> vertex, normal;
