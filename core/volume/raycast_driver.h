@@ -15,6 +15,13 @@ namespace hdrf::volume {
 struct RenderingViews {
   ImageView<Float3> vertex, normal, radiance;
   ImageView<float> nr, depth;
+  HDRF_HD void Set(int x, int y, const RayHit& hit) const {
+    vertex(x, y) = hit.vertex;
+    normal(x, y) = hit.normal;
+    radiance(x, y) = hit.radiance;
+    nr(x, y) = hit.nr;
+    depth(x, y) = hit.depth;
+  }
 };
 
 // The ray cast's guide from a depth image taken at the pose the model is ray cast from (the
@@ -55,12 +62,7 @@ void RaycastInTwoPasses(Device d, const VolumeView<V>& volume, const RaycastArgs
   par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) { r.depth(x, y) = MarchRay(vv, args, x, y); });
   par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
     const float ts = r.depth(x, y);
-    const RayHit hit = ts >= 0.f ? ShadeCrossing(vv, args, x, y, ts, typename VolumeView<V>::BrickHint{}) : RayHit{};
-    r.vertex(x, y) = hit.vertex;
-    r.normal(x, y) = hit.normal;
-    r.radiance(x, y) = hit.radiance;
-    r.nr(x, y) = hit.nr;
-    r.depth(x, y) = hit.depth;
+    r.Set(x, y, ts >= 0.f ? ShadeCrossing(vv, args, x, y, ts, typename VolumeView<V>::BrickHint{}) : RayHit{});
   });
 }
 
@@ -74,14 +76,7 @@ void RaycastInto(Device d, const VolumeView<V>& volume, const RaycastArgs& a, co
     const VolumeView<V> vv = volume;
     const RaycastArgs args = a;
     const RenderingViews r = out;
-    par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
-      const RayHit hit = RaycastPixel(vv, args, x, y);
-      r.vertex(x, y) = hit.vertex;
-      r.normal(x, y) = hit.normal;
-      r.radiance(x, y) = hit.radiance;
-      r.nr(x, y) = hit.nr;
-      r.depth(x, y) = hit.depth;
-    });
+    par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) { r.Set(x, y, RaycastPixel(vv, args, x, y)); });
   }
 }
 
