@@ -59,10 +59,12 @@ void RaycastInTwoPasses(Device d, const VolumeView<V>& volume, const RaycastArgs
   const VolumeView<V> vv = volume;
   const RaycastArgs args = a;
   const RenderingViews r = out;
-  par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) { r.depth(x, y) = MarchRay(vv, args, x, y); });
+  par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
+    r.depth(x, y) = MarchRay(vv, args, x, y, RayOfPixel(args, x, y));
+  });
   par::ForEachPixelInTiles(d, a.cam.width, a.cam.height, HDRF_LAMBDA(int x, int y) {
     const float ts = r.depth(x, y);
-    r.Set(x, y, ts >= 0.f ? ShadeCrossing(vv, args, x, y, ts, typename VolumeView<V>::BrickHint{}) : RayHit{});
+    r.Set(x, y, ts >= 0.f ? ShadeCrossing(vv, RayOfPixel(args, x, y), ts, typename VolumeView<V>::BrickHint{}) : RayHit{});
   });
 }
 

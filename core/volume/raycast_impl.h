@@ -78,15 +78,15 @@ HDRF_HD PixelRay RayOfPixel(const RaycastArgs& a, int x, int y) {
 }
 inline constexpr float kNoCrossing = -1.f;  // MarchRay: the ray met no front face
 
-// The walk of pixel (x, y)'s ray to the first zero crossing (front face) of the TSDF, skipping
-// empty 4x4x4-brick groups and empty bricks: the crossing's distance along the ray, or
-// kNoCrossing where the ray met nothing or a back face first. `last` (where given) is left
-// with the brick of the walk's last step, which ShadeCrossing may use to spare look-ups.
+// The walk of pixel (x, y)'s ray (`ray`: RayOfPixel) to the first zero crossing (front face)
+// of the TSDF, skipping empty 4x4x4-brick groups and empty bricks: the crossing's distance
+// along the ray, or kNoCrossing where the ray met nothing or a back face first. `last` (where
+// given) is left with the brick of the walk's last step, which ShadeCrossing may use to spare
+// look-ups.
 template <typename Enc>
-HDRF_HD float MarchRay(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y,
+HDRF_HD float MarchRay(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y, const PixelRay& ray,
                        typename VolumeView<Enc>::BrickHint* last = nullptr) {
   const float vs = V.voxel_m, trunc = V.trunc_m, bs = vs * kBrick;
-  const PixelRay ray = RayOfPixel(a, x, y);
   const Float3 dc = ray.dc, dw = ray.dw, o = ray.o;
   // The volume has no bounds: the ray runs from near (or from where its tile's guide says the
   // surface can begin) to far, skipping empty space, and only where it crosses the box of the
@@ -157,15 +157,14 @@ HDRF_HD float MarchRay(const VolumeView<Enc>& V, const RaycastArgs& a, int x, in
   return kNoCrossing;
 }
 
-// The hit at distance `ts` along pixel (x, y)'s ray (MarchRay's crossing): its point, the
-// model's normal there, its depth in the camera, and the model's radiance and NR there; a
-// zero hit where the normal is undefined. `near_hit`: a brick already looked up near the
-// point (none: BrickHint{}); it spares look-ups only, the result is the same.
+// The hit at distance `ts` along `ray` (MarchRay's crossing): its point, the model's normal
+// there, its depth in the camera, and the model's radiance and NR there; a zero hit where the
+// normal is undefined. `near_hit`: a brick already looked up near the point (none:
+// BrickHint{}); it spares look-ups only, the result is the same.
 template <typename Enc>
-HDRF_HD RayHit ShadeCrossing(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y, float ts,
+HDRF_HD RayHit ShadeCrossing(const VolumeView<Enc>& V, const PixelRay& ray, float ts,
                              const typename VolumeView<Enc>::BrickHint& near_hit) {
   RayHit hit;
-  const PixelRay ray = RayOfPixel(a, x, y);
   const Float3 ps = ray.o + ray.dw * ts;
   Float3 nrm;
   // On the CPU the walk's last brick (near ps) spares look-ups, and the radiance is taken from
@@ -197,9 +196,10 @@ HDRF_HD RayHit ShadeCrossing(const VolumeView<Enc>& V, const RaycastArgs& a, int
 // where the ray met nothing.
 template <typename Enc>
 HDRF_HD RayHit RaycastPixel(const VolumeView<Enc>& V, const RaycastArgs& a, int x, int y) {
+  const PixelRay ray = RayOfPixel(a, x, y);
   typename VolumeView<Enc>::BrickHint last;
-  const float ts = MarchRay(V, a, x, y, &last);
-  return ts >= 0.f ? ShadeCrossing(V, a, x, y, ts, last) : RayHit{};
+  const float ts = MarchRay(V, a, x, y, ray, &last);
+  return ts >= 0.f ? ShadeCrossing(V, ray, ts, last) : RayHit{};
 }
 
 }  // namespace hdrf::volume
