@@ -34,7 +34,7 @@ void CheckTrackingArgs(const TrackingExperimentArgs& a);
 // Tracking on a real 7-Scenes recording against its own poses, ours beside the peers
 // (real_tracking.cpp).
 struct RealTrackingArgs {
-  std::string data;           // a 7-Scenes folder: frames/, camera-intrinsics.txt
+  std::vector<std::string> data;  // 7-Scenes folders: frames/, camera-intrinsics.txt (one or more)
   std::string out;            // results folder (required)
   std::string work;           // the sequence everyone reads; "" = OUT/work
   std::string peers_program;  // hdrfusion-peers; "" = no peers

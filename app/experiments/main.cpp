@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
 
   auto real_args = std::make_shared<RealTrackingArgs>();
   auto* real = app.add_subcommand("real", "Our trackers and the peers on a real 7-Scenes recording");
-  real->add_option("--data", real_args->data, "7-Scenes folder (frames/, camera-intrinsics.txt)")->required();
+  real->add_option("--data", real_args->data,
+                   "7-Scenes folders (frames/, camera-intrinsics.txt); with several, each gets OUT/<folder name>/")
+      ->required();
   real->add_option("--out", real_args->out, "Results folder")->required();
   real->add_option("--work", real_args->work, "Folder for the sequence every tracker reads (default: OUT/work)");
   real->add_option("--peers", real_args->peers_program, "The hdrfusion-peers program to run on the same frames");

@@ -1,9 +1,11 @@
-// `hdrfusion-experiments real`: tracking on a real recording. The frames of a 7-Scenes
-// folder (frame-NNNNNN.color.png, .depth.png in millimetres, .pose.txt camera to world,
-// camera-intrinsics.txt) are written as a sequence in the TUM layout; our trackers (nr+icp,
-// icp, nr, frame to model, engine defaults, the sRGB curve since the sensor has no
-// calibration; nr+icp also with fixed instead of measured scales) and the peers (hdrfusion-peers) run on that folder in the same run, each
-// compared with the dataset's own poses. Writes real.md and real.json.
+// `hdrfusion-experiments real`: tracking on real recordings. The frames of each 7-Scenes
+// folder (frame-NNNNNN.color.png or .jpg, .depth.png in millimetres, .pose.txt camera to
+// world, camera-intrinsics.txt) are written as a sequence in the TUM layout; our trackers
+// (nr+icp, icp, nr, frame to model, engine defaults, the sRGB curve since the sensor has no
+// calibration; nr+icp also with fixed instead of measured scales) and the peers
+// (hdrfusion-peers) run on that folder in the same run, each compared with the dataset's own
+// poses. Writes real.md and real.json (with several recordings, one folder each and a real.md
+// of all).
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 
 #include "cli/progress.h"
 #include "common/error.h"
@@ -54,34 +57,54 @@ std::array<double, 4> ReadIntrinsics(const fs::path& file) {
   return {k[0], k[4], k[2], k[5]};
 }
 
+// The recording's folder name (a trailing slash ignored).
+std::string RecordingName(const std::string& folder) {
+  fs::path p(folder);
+  if (p.filename().empty()) p = p.parent_path();
+  return p.filename().string();
+}
+
 }  // namespace
 
 void CheckRealTrackingArgs(const RealTrackingArgs& a) {
   if (a.out.empty()) throw SettingError("--out", "names the results folder and is required");
   if (a.data.empty()) throw SettingError("--data", "names a 7-Scenes folder and is required");
-  if (!fs::is_directory(fs::path(a.data) / "frames"))
-    throw InputError(a.data, "has no frames/ folder (frame-NNNNNN.color.png, .depth.png, .pose.txt)");
-  if (!fs::exists(fs::path(a.data) / "camera-intrinsics.txt"))
-    throw InputError(a.data, "has no camera-intrinsics.txt");
+  std::set<std::string> names;
+  for (const std::string& d : a.data) {
+    if (!fs::is_directory(fs::path(d) / "frames"))
+      throw InputError(d, "has no frames/ folder (frame-NNNNNN.color.png or .jpg, .depth.png, .pose.txt)");
+    if (!fs::exists(fs::path(d) / "camera-intrinsics.txt")) throw InputError(d, "has no camera-intrinsics.txt");
+    if (!names.insert(RecordingName(d)).second)
+      throw SettingError("--data", "two recordings are named '" + RecordingName(d) + "' (each gets OUT/<name>/)");
+  }
   if (!a.peers_program.empty() && !fs::exists(a.peers_program))
     throw SettingError("--peers", "'" + a.peers_program + "' does not exist (hdrfusion-peers is built where "
                                   "tools/install_deps.sh --peers installed OpenCV contrib and Open3D)");
 }
 
-int RunRealTracking(const RealTrackingArgs& a) {
-  CheckRealTrackingArgs(a);
-  const fs::path data = a.data, out = a.out;
+namespace {
+
+// One recording: its sequence folder, our trackers and the peers on it; writes real.md and
+// real.json in `out` and returns the table.
+std::string RunRecording(const fs::path& data, const fs::path& out, const fs::path& work_dir,
+                         const std::string& peers_program) {
   // 1. The recording as a sequence folder (copies: every reader gets identical files).
   std::map<int, std::string> stems;  // frame number -> "frame-NNNNNN"
-  const std::regex pat(R"(frame-(\d{1,9})\.color\.png)");
+  std::map<int, std::string> color_ext;  // frame number -> ".png" or ".jpg" (7-Scenes ships both)
+  const std::regex pat(R"(frame-(\d{1,9})\.color(\.png|\.jpg))");
   for (const auto& e : fs::directory_iterator(data / "frames")) {
     std::smatch m;
     const std::string name = e.path().filename().string();
-    if (std::regex_match(name, m, pat)) stems[std::stoi(m[1])] = "frame-" + m[1].str();
+    if (std::regex_match(name, m, pat)) {
+      const int n = std::stoi(m[1]);
+      if (stems.count(n)) throw InputError((data / "frames").string(), "holds frame " + m[1].str() + " twice (.png and .jpg)");
+      stems[n] = "frame-" + m[1].str();
+      color_ext[n] = m[2].str();
+    }
   }
-  if (stems.size() < 5) throw InputError((data / "frames").string(), "holds fewer than 5 colour frames");
+  if (stems.size() < 5) throw InputError((data / "frames").string(), "holds fewer than 5 colour frames (frame-NNNNNN.color.png or .jpg)");
   const auto k = ReadIntrinsics(data / "camera-intrinsics.txt");
-  const fs::path work = a.work.empty() ? out / "work" : fs::path(a.work);
+  const fs::path work = work_dir;
   const fs::path seq = work / "sequence";
   fs::remove_all(seq);
   fs::create_directories(seq / "rgb");
@@ -92,11 +115,12 @@ int RunRealTracking(const RealTrackingArgs& a) {
     for (const char* ext : {".depth.png", ".pose.txt"})
       if (!fs::exists(data / "frames" / (stem + ext)))
         throw InputError((data / "frames" / (stem + ext)).string(), "is missing (its colour frame is there)");
-    fs::copy_file(data / "frames" / (stem + ".color.png"), seq / "rgb" / (stem + ".png"));
+    const std::string cext = color_ext.at(n);
+    fs::copy_file(data / "frames" / (stem + ".color" + cext), seq / "rgb" / (stem + cext));
     fs::copy_file(data / "frames" / (stem + ".depth.png"), seq / "depth" / (stem + ".png"));
     char t[32];
     std::snprintf(t, sizeof t, "%.6f", n / 30.0);  // 7-Scenes: 30 frames/s
-    rgb += std::string(t) + " rgb/" + stem + ".png\n";
+    rgb += std::string(t) + " rgb/" + stem + cext + "\n";
     depth += std::string(t) + " depth/" + stem + ".png\n";
     gt.push_back({n / 30.0, ReadPoseMatrix(data / "frames" / (stem + ".pose.txt"))});
   }
@@ -105,7 +129,8 @@ int RunRealTracking(const RealTrackingArgs& a) {
   write(seq / "depth.txt", depth);
   io::WriteTrajectory(seq / "groundtruth.txt", gt);
   {
-    const ColorImage probe = io::ReadColorImage(seq / "rgb" / (stems.begin()->second + ".png"));
+    const ColorImage probe =
+        io::ReadColorImage(seq / "rgb" / (stems.begin()->second + color_ext.begin()->second));
     json s = {{"camera", {{"width", probe.width()}, {"height", probe.height()}, {"fx", k[0]}, {"fy", k[1]}, {"cx", k[2]},
                           {"cy", k[3]}}},
               {"depth", {{"scale", 1000}}}};
@@ -148,12 +173,12 @@ int RunRealTracking(const RealTrackingArgs& a) {
     }
   }
   // 3. The peers on the same folder, now.
-  if (a.peers_program.empty()) {
+  if (peers_program.empty()) {
     std::fprintf(stderr, "real: peers not run (--peers names the hdrfusion-peers program to run them)\n");
   } else {
     const fs::path pout = work / "peers";
     fs::remove_all(pout);
-    const std::string cmd = ShellQuote(a.peers_program) + " " + ShellQuote(seq.string()) + " --out " +
+    const std::string cmd = ShellQuote(peers_program) + " " + ShellQuote(seq.string()) + " --out " +
                             ShellQuote(pout.string()) + " --only open3d,opencv-rgbd,opencv-icp,opencv-rgbd-icp";
     std::fprintf(stderr, "real: peers: %s\n", cmd.c_str());
     const int rc = std::system(cmd.c_str());
@@ -206,7 +231,28 @@ int RunRealTracking(const RealTrackingArgs& a) {
       table;
   io::WriteFileAtomically(out / "real.md", md);
   io::WriteFileAtomically(out / "real.json", json{{"frames", frames.size()}, {"trackers", j}}.dump(1) + "\n");
-  std::printf("%s\nwrote %s/{real.md, real.json}\n", table.c_str(), a.out.c_str());
+  std::printf("%s\n%s\nwrote %s/{real.md, real.json}\n", data.string().c_str(), table.c_str(), out.string().c_str());
+  return "## " + RecordingName(data.string()) + " (" + std::to_string(frames.size()) + " frames)\n\n" + table;
+}
+
+}  // namespace
+
+int RunRealTracking(const RealTrackingArgs& a) {
+  CheckRealTrackingArgs(a);
+  const fs::path out = a.out;
+  if (a.data.size() == 1) {
+    RunRecording(a.data[0], out, a.work.empty() ? out / "work" : fs::path(a.work), a.peers_program);
+    return 0;
+  }
+  std::string md = "# Tracking on real recordings (`hdrfusion-experiments real`)\n\nEach recording's folder holds its "
+                   "real.md (the set-up) and real.json.\n\n";
+  for (const std::string& d : a.data) {
+    const std::string name = RecordingName(d);
+    const fs::path work = a.work.empty() ? out / name / "work" : fs::path(a.work) / name;
+    md += RunRecording(d, out / name, work, a.peers_program) + "\n";
+  }
+  io::WriteFileAtomically(out / "real.md", md);
+  std::printf("wrote %s/real.md\n", out.string().c_str());
   return 0;
 }
 

@@ -128,7 +128,10 @@ void WriteDepthPng(const std::filesystem::path& file, const DepthRawImage& image
 DepthImage DepthToMetres(const DepthRawImage& raw, double scale) {
   DepthImage out(raw.width(), raw.height());
   const float inv = float(1.0 / scale);
-  for (std::size_t i = 0; i < raw.size(); ++i) out[i] = float(raw[i]) * inv;
+  // 65535, the largest code, is no measurement: sensors and datasets (7-Scenes among them)
+  // mark invalid pixels with it as well as with 0, and read as depth it is a point tens of
+  // metres away that tracking and fusion would take for a surface.
+  for (std::size_t i = 0; i < raw.size(); ++i) out[i] = raw[i] == kDepthInvalidMax ? 0.f : float(raw[i]) * inv;
   return out;
 }
 
@@ -136,7 +139,7 @@ DepthRawImage DepthFromMetres(const DepthImage& depth_m, double scale) {
   DepthRawImage out(depth_m.width(), depth_m.height());
   for (std::size_t i = 0; i < depth_m.size(); ++i) {
     const double v = std::round(double(depth_m[i]) * scale);
-    out[i] = (std::isfinite(v) && v > 0) ? std::uint16_t(std::min(v, 65535.0)) : 0;
+    out[i] = (std::isfinite(v) && v > 0) ? std::uint16_t(std::min(v, double(kDepthInvalidMax - 1))) : 0;
   }
   return out;
 }

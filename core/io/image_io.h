@@ -35,6 +35,8 @@ ColorImage DecodeColorPng(const std::filesystem::path& file, const std::vector<s
                           const std::string& what);
 
 // Raw depth to metres (0 stays 0 = no data).
+// Raw depth codes to metres; 0 and kDepthInvalidMax are both "no depth" (0 m).
+inline constexpr std::uint16_t kDepthInvalidMax = 65535;
 DepthImage DepthToMetres(const DepthRawImage& raw, double scale);
 DepthRawImage DepthFromMetres(const DepthImage& depth_m, double scale);
 

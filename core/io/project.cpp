@@ -176,7 +176,13 @@ json FrameReportToJson(const pipeline::FrameReport& r) {
                            {"rms_photo", r.tracking.rms_photo}, {"icp_inliers", r.tracking.icp_inliers},
                            {"photo_inliers", r.tracking.photo_inliers}, {"iterations", r.tracking.iterations},
                            {"weakest_info", r.tracking.weakest_info}, {"strongest_info", r.tracking.strongest_info},
-                           {"prior_sigmas", r.tracking.prior_sigmas}}},
+                           {"prior_sigmas", r.tracking.prior_sigmas},
+                           // The terms that tracked the frame and their weights in the solve.
+                           {"terms", {{"icp", r.tracking.icp_matched > 0 ? 1.0 : 0.0},
+                                      {"photometric", r.tracking.photo_matched > 0 ? r.tracking.photo_share : 0.0}}},
+                           {"photo_pull_mm", 1000 * r.tracking.photo_pull_m},
+                           {"photo_pull_deg", r.tracking.photo_pull_rad * 180 / 3.14159265358979},
+                           {"icp_depth_ref_m", r.tracking.icp_depth_ref_m}}},
              {"fused", r.fused},
              {"depth_share", r.depth_share},
              {"allocated_bricks", r.allocated_bricks},
@@ -212,6 +218,14 @@ pipeline::FrameReport FrameReportFromJson(const fs::path& file, const json& j) {
     r.tracking.weakest_info = t.value("weakest_info", 0.0);
     r.tracking.strongest_info = t.value("strongest_info", 0.0);
     r.tracking.prior_sigmas = t.value("prior_sigmas", 0.0);
+    if (t.contains("terms") && t["terms"].is_object()) {
+      r.tracking.photo_share = t["terms"].value("photometric", 0.0);
+      r.tracking.icp_matched = t["terms"].value("icp", 0.0) > 0 ? 1 : 0;
+      r.tracking.photo_matched = r.tracking.photo_share > 0 ? 1 : 0;
+    }
+    r.tracking.photo_pull_m = t.value("photo_pull_mm", 0.0) / 1000;
+    r.tracking.photo_pull_rad = t.value("photo_pull_deg", 0.0) * 3.14159265358979 / 180;
+    r.tracking.icp_depth_ref_m = t.value("icp_depth_ref_m", 0.0);
     r.fused = j.at("fused").get<bool>();
     const std::string state = j.value("state", r.fused ? "tracked" : "lost");
     bool known = false;

@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -119,6 +120,12 @@ constexpr int kMaxExtrapolate = 30;  // frames the last motion is carried on whi
 constexpr double kMinColourShare = 0.1;    // recovering: colour terms per depth term to confirm a pose
 constexpr double kMaxPriorSigmas = 5;      // a pose this many prior deviations from the prediction: refused
 constexpr double kMinExposureShare = 0.03;  // exposure samples per sample point for a usable estimate
+// nr+icp: how far the photometric term may pull the pose off the depth's own optimum
+// (Pipeline::WeighPhotometric), and the least share it keeps before it is dropped.
+constexpr double kPhotoPullM = 0.001, kPhotoPullRad = 0.05 * 3.14159265358979 / 180.0;
+constexpr double kMinPhotoShare = 0.05;
+constexpr double kStrongDirection = 1e-2;  // ...of the strongest direction's information
+constexpr double kPriorScaleM = 0.01, kPriorScaleRad = 3.14159265358979 / 180.0;  // 1 cm, 1 degree
 void Push(std::vector<double>& v, double x) {
   v.push_back(x);
   if (v.size() > kHistory) v.erase(v.begin());
@@ -249,12 +256,73 @@ double Pipeline::Quality(const tracking::TrackResult& r, const Verdict& v) const
 
 tracking::TrackerOptions Pipeline::TrackerNow() const {
   tracking::TrackerOptions t = o_.tracker;
+  // The point-to-plane scale holds at the frame's median depth and grows with the depth
+  // squared: a triangulating sensor's noise (a Kinect's 1.5 mm at 1 m, 2 cm at 3.5 m), so that
+  // far, noisy surfaces weigh less than near ones instead of pulling the pose with their noise.
+  if (UsesIcp(t.kind)) t.icp_depth_ref_m = float(depth_median_m_);
   if (!t.adaptive_scales) return t;
   if (icp_residuals_.size() >= kMinHistory)
     t.icp_sigma_m = float(std::max(double(t.icp_sigma_floor_m), Median(icp_residuals_)));
   if (photo_residuals_.size() >= kMinHistory)
     t.photo_sigma = float(std::max(double(t.photo_sigma_floor), Median(photo_residuals_)));
   return t;
+}
+
+void Pipeline::WeighPhotometric(Backend& b, const tracking::TrackerOptions& topt, const Pose& start,
+                                const tracking::MotionPrior& prior, tracking::TrackResult* r) {
+  // At the pose the joint solve found, each term's own Gauss-Newton step on its own: where the
+  // colour fits the depth (registered, with a response that holds), both are at their optimum
+  // and neither wants to move; where it does not (colour a few pixels off the depth, an
+  // assumed response), the photometric term has pulled the pose off the depth's optimum, and
+  // the depth's own step measures how far. Beyond kPhotoPullM / kPhotoPullRad the photometric
+  // term's share is cut and the finest level solved again; below kMinPhotoShare it is dropped.
+  tracking::TrackerOptions ti = topt;
+  ti.kind = tracking::TrackerKind::kIcp;
+  // The depth's own step, along the directions it fixes: in units of 1 cm and 1 degree (as
+  // the tracker's weak directions are judged), those whose information is under
+  // kStrongDirection of the strongest one's (a wall slid along) are left out: there the
+  // photometric term is what holds the pose, and no pull can be told from the depth's noise.
+  const tracking::GnSystem si = b.Accumulate(0, r->T_world_camera, ti);
+  if (si.v[31] < 50) return;  // the depth fixes nothing alone: the joint pose stands
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> g, sw;
+  for (int i = 0, k = 0; i < 6; ++i) {
+    for (int j = i; j < 6; ++j, ++k) H(i, j) = H(j, i) = si.v[k];
+    g(i) = si.v[tracking::GnSystem::kH + i];
+  }
+  sw << kPriorScaleM, kPriorScaleM, kPriorScaleM, kPriorScaleRad, kPriorScaleRad, kPriorScaleRad;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(sw.asDiagonal() * H * sw.asDiagonal());
+  if (es.info() != Eigen::Success) return;
+  const double top = es.eigenvalues()(5);
+  if (!(top > 0) || !std::isfinite(top)) return;
+  Eigen::Matrix<double, 6, 1> y = Eigen::Matrix<double, 6, 1>::Zero();
+  const Eigen::Matrix<double, 6, 1> gw = sw.asDiagonal() * g;
+  for (int k = 0; k < 6; ++k) {
+    const double lam = es.eigenvalues()(k);
+    if (lam < kStrongDirection * top) continue;
+    const Eigen::Matrix<double, 6, 1> u = es.eigenvectors().col(k);
+    y -= u * (u.dot(gw) / lam);
+  }
+  const Vec6 xi = sw.asDiagonal() * y;
+  if (!xi.allFinite()) return;
+  r->photo_pull_m = xi.head<3>().norm();
+  r->photo_pull_rad = xi.tail<3>().norm();
+  const double pull = std::max(r->photo_pull_m / kPhotoPullM, r->photo_pull_rad / kPhotoPullRad);
+  if (pull <= 1) return;
+  // For small shares the pull falls about in proportion with the share: a share of 1/pull^2
+  // leaves a pull of about 1/pull of the bound, less the farther the colour is off.
+  const double share = 1.0 / (pull * pull) < kMinPhotoShare ? 0.0 : 1.0 / (pull * pull);
+  tracking::TrackerOptions t2 = topt;
+  t2.photo_share = float(share);
+  if (share == 0) t2.kind = tracking::TrackerKind::kIcp;
+  // The finest level again, from the pose found (its basin is reached).
+  t2.levels = 1;
+  t2.iterations[0] = topt.iterations[std::size_t(std::max(0, std::min(topt.levels, 4) - 1))];
+  const tracking::GaussNewtonRun run = b.RunTracker(r->T_world_camera, t2, &prior);
+  const double pull_m = r->photo_pull_m, pull_rad = r->photo_pull_rad;
+  *r = tracking::JudgeTrack(run, start, std::min(b.LiveValid(), b.ReferenceValid()), topt, &prior);
+  r->photo_share = share;
+  r->photo_pull_m = pull_m, r->photo_pull_rad = pull_rad;
 }
 
 double Pipeline::Steps(const FrameInput& in) const {
@@ -332,13 +400,22 @@ FrameReport Pipeline::Process(const FrameInput& in) {
   Backend& b = *backend_;
   {
     long with_depth = 0, beyond = 0, samples = 0;
+    std::vector<float> depths;
+    depths.reserve(std::size_t(in.depth_m.width() / 4 + 1) * std::size_t(in.depth_m.height() / 4 + 1));
     for (int y = 0; y < in.depth_m.height(); y += 4)
       for (int x = 0; x < in.depth_m.width(); x += 4) {
         const float z = in.depth_m(x, y);
         ++samples;
         with_depth += z > 0;
         beyond += z > o_.volume.raycast_far_m;
+        if (z > 0 && std::isfinite(z)) depths.push_back(z);
       }
+    depth_median_m_ = 0;
+    if (!depths.empty()) {
+      auto mid = depths.begin() + std::ptrdiff_t(depths.size() / 2);
+      std::nth_element(depths.begin(), mid, depths.end());
+      depth_median_m_ = double(*mid);
+    }
     rep.depth_beyond_far = with_depth > 0 ? double(beyond) / double(with_depth) : 0.0;
     rep.depth_share = samples > 0 ? double(with_depth) / double(samples) : 0.0;
   }
@@ -415,6 +492,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       const tracking::MotionPrior prior{predicted, steps};
       if (b.HasRender()) b.EstimateExposureWithNextRun();  // (Verify estimates it at the pose found)
       r = track(predicted, &prior);
+      if (topt.kind == tracking::TrackerKind::kNrIcp && !r.lost) WeighPhotometric(b, topt, predicted, prior, &r);
       verdict = Verify(r, in, recovering_);
     } else {
       // Lost: from the last pose carried on with its last motion (a camera that went on

@@ -228,6 +228,11 @@ class Pipeline {
   Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering, bool relocalised = false);
   double Quality(const tracking::TrackResult& r, const Verdict& v) const;
   tracking::TrackerOptions TrackerNow() const;  // the settings, with measured scales
+  double depth_median_m_ = 0;  // this frame's median depth (the sampled pixels with depth)
+  // nr+icp: the photometric term weighed by how well it agrees with the depth at the pose
+  // found (see the definition); the pose solved again with its share where it does not.
+  void WeighPhotometric(Backend& b, const tracking::TrackerOptions& topt, const Pose& start,
+                        const tracking::MotionPrior& prior, tracking::TrackResult* r);
   static double Median(std::vector<double> v);
 
  public:

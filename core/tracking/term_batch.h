@@ -23,12 +23,13 @@ class TermBatch {
   ~TermBatch() { Flush(); }
 
   // As tracking::AddRobustTerm (tracking_impl.h) for a GnSystem.
-  friend void AddRobustTerm(TermBatch& b, const double J[6], double r, double s, double huber_k, int first) {
+  friend void AddRobustTerm(TermBatch& b, const double J[6], double r, double s, double huber_k, int first,
+                            double share = 1) {
     const double wgt = HuberWeight(r * s, huber_k);
     const int n = b.n_;
     for (int i = 0; i < 6; ++i) b.j_[i][n] = J[i];
-    b.w_[n] = wgt;
-    b.wr_[n] = wgt * (r * s);
+    b.w_[n] = wgt * share;
+    b.wr_[n] = (wgt * share) * (r * s);
     b.out_.v[first] += wgt * r * r;
     b.out_.v[first + 2] += wgt;
     b.out_.v[first + 4] += 1;

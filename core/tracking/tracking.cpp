@@ -65,6 +65,8 @@ void TrackerOptions::Check() const {
     throw SettingError("tracker.max_exposure_drift", "must be in (0, 100]");
   if (confirm_frames < 1 || confirm_frames > 1000) throw SettingError("tracker.confirm_frames", "must be 1 to 1000");
   if (!(min_anchor_depth >= 0 && min_anchor_depth <= 1)) throw SettingError("tracker.min_anchor_depth", "must be in [0, 1]");
+  if (!(icp_depth_ref_m >= 0 && icp_depth_ref_m < 1e3)) throw SettingError("tracker.icp_depth_ref_m", "must be in [0, 1000) m");
+  if (!(photo_share >= 0 && photo_share <= 1)) throw SettingError("tracker.photo_share", "must be in [0, 1]");
 }
 
 namespace {
@@ -129,6 +131,7 @@ IcpArgs MakeIcpArgs(const ReferenceView& ref, const Pose& T_world_ref, const Liv
   a.max_dist = o.icp_max_dist_m;
   a.inv_sigma = 1.f / o.icp_sigma_m;
   a.huber_k = o.huber_k;
+  a.z_ref_m = o.icp_depth_ref_m;
   return a;
 }
 
@@ -145,6 +148,7 @@ PhotoArgs MakePhotoArgs(const ReferenceView& ref, const LiveView& live, const Po
   a.T_live_world = ToRigidTransform(T_world_live.inverse());
   a.photo_sigma = o.photo_sigma;
   a.huber_k = o.huber_k;
+  a.share = o.photo_share;
   return a;
 }
 
@@ -409,6 +413,8 @@ TrackResult JudgeTrack(const GaussNewtonRun& run, const Pose& initial, long live
   GnSystem last = run.last;
   res.iterations = run.iterations;
   res.level_iterations = run.level_iterations;
+  res.photo_share = o.kind == TrackerKind::kIcp ? 0.0 : double(o.photo_share);
+  res.icp_depth_ref_m = o.icp_depth_ref_m;
   res.T_world_camera = T;
   res.rms_icp_m = last.icp_w() > 0 ? std::sqrt(last.icp_r2() / last.icp_w()) : 0;
   res.rms_photo = last.photo_w() > 0 ? std::sqrt(last.photo_r2() / last.photo_w()) : 0;

@@ -70,6 +70,13 @@ struct TrackerOptions {
   int confirm_frames = 3;
   // The model is anchored by the first frame with at least this share of pixels with depth.
   float min_anchor_depth = 0.25f;
+  // Set frame by frame by the pipeline (not settings). The depth at which a point-to-plane
+  // residual has the scale icp_sigma_m: a residual nearer or farther is scaled with the depth
+  // squared, as the noise of a triangulating depth sensor (structured light, stereo) grows;
+  // 0: one scale at every depth.
+  float icp_depth_ref_m = 0;
+  // The photometric term's weight in the solve, 0..1 (its health sums count it whole).
+  float photo_share = 1;
   void Check() const;
 };
 
@@ -147,6 +154,11 @@ struct TrackResult {
   double weak_offset = 0;      // the pose's offset from the prediction along that direction (whitened)
   int iterations = 0;
   std::array<int, 4> level_iterations{};  // of which at each pyramid level (0 = finest)
+  // The photometric term's weight in the solve (0: depth alone; TrackerOptions::photo_share),
+  // and how far the pose found with it whole lay from where the depth alone would take it.
+  double photo_share = 0;
+  double photo_pull_m = 0, photo_pull_rad = 0;
+  double icp_depth_ref_m = 0;  // the depth the point-to-plane scale held at (0: every depth)
   bool lost = false;
   std::string why;             // why it was judged lost
 };

@@ -47,9 +47,11 @@ HDRF_HD double HuberWeight(double r_scaled, double k) {
 // Adds one robustly weighted term: J and r are already scaled by `s`; `first` is the index
 // of the term kind's residual sum in GnSystem::v (27: ICP, 28: photometric), followed two
 // and four places on by its weight sum and count.
-HDRF_HD void AddRobustTerm(GnSystem& acc, const double J[6], double r, double s, double huber_k, int first) {
+// `share` scales the term's weight in the normal equations, not in the health sums.
+HDRF_HD void AddRobustTerm(GnSystem& acc, const double J[6], double r, double s, double huber_k, int first,
+                           double share = 1) {
   const double wgt = HuberWeight(r * s, huber_k);
-  acc.Add(J, r * s, wgt);
+  acc.Add(J, r * s, wgt * share);
   acc.v[first] += wgt * r * r;
   acc.v[first + 2] += wgt;
   acc.v[first + 4] += 1;
@@ -64,6 +66,7 @@ struct IcpArgs {
   RigidTransform T_world_live, T_ref_world;
   double R_world_live[9];  // rotation of the live pose, row-major, double
   float cos_max_angle, max_dist, inv_sigma, huber_k;
+  float z_ref_m;  // > 0: residuals scaled by (z_ref / z)^2 (TrackerOptions::icp_depth_ref_m)
 };
 // IcpTerm in two halves: the live vertex carried into the world and projected into the
 // reference (IcpProject: false where it has no term), then the term at the reference pixel
@@ -97,7 +100,11 @@ HDRF_HD bool IcpAt(const IcpArgs& a, int x, int y, const Float3& p, int ux, int 
   const double ay = R[1] * nx + R[4] * ny + R[7] * nz;
   const double az = R[2] * nx + R[5] * ny + R[8] * nz;
   const double vx = v.x, vy = v.y, vz = v.z;
-  const double s = a.inv_sigma;
+  double s = a.inv_sigma;
+  if (a.z_ref_m > 0.f) {
+    const double q = double(a.z_ref_m) / vz;
+    s *= q * q;
+  }
   const double J[6] = {ax * s, ay * s, az * s, (vy * az - vz * ay) * s, (vz * ax - vx * az) * s,
                        (vx * ay - vy * ax) * s};
   AddRobustTerm(acc, J, r, s, a.huber_k, 27);
@@ -119,6 +126,7 @@ struct PhotoArgs {
   PinholeCamera live_cam;
   RigidTransform T_live_world;
   float photo_sigma, huber_k;
+  float share;  // the term's weight in the solve, 0..1 (the health sums count it whole)
 };
 // PhotoTerm in two halves, as IcpTerm: the reference point carried into the live camera and
 // its bilinear position there (PhotoProject: false where it has no term), then the term
@@ -152,7 +160,7 @@ HDRF_HD bool PhotoAt(const PhotoArgs& a, const Float3& q, const imaging::Bilinea
                        (qx * gv - qy * gu) * s};
   // The residual as the solve weighs it (confidence times difference), so that its recorded
   // scale is the one the measured scales must match.
-  AddRobustTerm(acc, J, r * double(wl), 1.0 / double(a.photo_sigma), a.huber_k, 28);
+  AddRobustTerm(acc, J, r * double(wl), 1.0 / double(a.photo_sigma), a.huber_k, 28, double(a.share));
   return true;
 }
 template <typename Acc>

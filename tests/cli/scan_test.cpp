@@ -186,26 +186,29 @@ TEST(ScanErrors, TheFirstFrameWithDepthAnchorsTheModel) {
 namespace hdrf {
 namespace {
 
-// A real recording: 50 Kinect v1 frames of 7-Scenes "redkitchen" (../shared/data), with
-// KinectFusion poses as reference; no calibration, so --response srgb.
-TEST(ScanReal, SevenScenesKitchenAgainstItsReferencePoses) {
-  const auto src = test::SharedData("7scenes_redkitchen/frames");
-  HDRF_SKIP_WITHOUT(src, "7scenes_redkitchen");
-  test::TempDir dir;
-  const fs::path seq = dir / "kitchen";
+// A 7-Scenes recording's frames (frame-NNNNNN.color.png or .jpg, .depth.png, .pose.txt) as a
+// sequence in the TUM layout, by links, as a user converting them would.
+void SevenScenesAsSequence(const fs::path& src, const fs::path& seq) {
   fs::create_directories(seq / "rgb");
   fs::create_directories(seq / "depth");
+  std::vector<std::string> stems;
+  for (const auto& e : fs::directory_iterator(src)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() > 10 && name.rfind(".pose.txt") == name.size() - 9) stems.push_back(name.substr(0, name.size() - 9));
+  }
+  std::sort(stems.begin(), stems.end());
   std::string rgb, depth, gt;
-  for (int k = 150; k < 200; ++k) {
-    char n[32], t[32];
-    std::snprintf(n, sizeof n, "frame-%06d", k);
+  for (const std::string& n : stems) {
+    const int k = std::stoi(n.substr(6));
+    char t[32];
     std::snprintf(t, sizeof t, "%.6f", k / 30.0);
-    fs::create_symlink(src / (std::string(n) + ".color.png"), seq / "rgb" / (std::string(n) + ".png"));
-    fs::create_symlink(src / (std::string(n) + ".depth.png"), seq / "depth" / (std::string(n) + ".png"));
-    rgb += std::string(t) + " rgb/" + n + ".png\n";
+    const std::string ext = fs::exists(src / (n + ".color.png")) ? ".png" : ".jpg";
+    fs::create_symlink(src / (n + ".color" + ext), seq / "rgb" / (n + ext));
+    fs::create_symlink(src / (n + ".depth.png"), seq / "depth" / (n + ".png"));
+    rgb += std::string(t) + " rgb/" + n + ext + "\n";
     depth += std::string(t) + " depth/" + n + ".png\n";
     // 4x4 camera-to-world matrix -> TUM line.
-    std::ifstream in(src / (std::string(n) + ".pose.txt"));
+    std::ifstream in(src / (n + ".pose.txt"));
     Eigen::Matrix4d M;
     for (int i = 0; i < 16; ++i) in >> M(i / 4, i % 4);
     const Eigen::Quaterniond q(Eigen::Matrix3d(M.block<3, 3>(0, 0)));
@@ -219,6 +222,16 @@ TEST(ScanReal, SevenScenesKitchenAgainstItsReferencePoses) {
   test::WriteText(seq / "groundtruth.txt", gt);
   test::WriteText(seq / "sensor.json", R"({"camera": {"width": 640, "height": 480, "fx": 585, "fy": 585,
                                           "cx": 320, "cy": 240}, "depth": {"scale": 1000}})");
+}
+
+// A real recording: 50 Kinect v1 frames of 7-Scenes "redkitchen" (../shared/data), with
+// KinectFusion poses as reference; no calibration, so --response srgb.
+TEST(ScanReal, SevenScenesKitchenAgainstItsReferencePoses) {
+  const auto src = test::SharedData("7scenes_redkitchen/frames");
+  HDRF_SKIP_WITHOUT(src, "7scenes_redkitchen");
+  test::TempDir dir;
+  const fs::path seq = dir / "kitchen";
+  SevenScenesAsSequence(src, seq);
   const std::string out = (dir / "scan").string();
   RunResult r = RunCli("scan " + seq.string() + " --out " + out + " --response srgb");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -231,6 +244,53 @@ TEST(ScanReal, SevenScenesKitchenAgainstItsReferencePoses) {
   // Measured 2026-11-24: 0.86 cm (1.99 cm before the tracker measured its terms' scales)
   // against poses that are themselves KinectFusion estimates.
   EXPECT_LT(ev["ate_rmse_m"].get<double>(), 0.015);
+}
+
+// 500 real frames (7-Scenes "redkitchen" 500-999: 3.4 m walked, 885 degrees turned; colour and
+// depth not registered, auto exposure, no calibration), long enough for drift to show. The
+// default tracker holds within 2 cm of the reference (measured 1.85 cm with either tracker;
+// a KinectFusion-class tracker, InfiniTAM v3's depth-only ICP at 2 cm voxels, holds 1.78 cm),
+// and the photometric term, which does not fit this colour, does not
+// make it worse than depth alone: each frame's report says which terms tracked it and with
+// what weight.
+TEST(ScanReal, SevenScenesKitchen500FramesHoldTwoCentimetres) {
+  const auto src = test::SharedData("7scenes_redkitchen_500_999/frames");
+  HDRF_SKIP_WITHOUT(src, "7scenes_redkitchen_500_999");
+  test::TempDir dir;
+  const fs::path seq = dir / "kitchen";
+  SevenScenesAsSequence(src, seq);
+  double ate[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = (dir / (k == 0 ? "default" : "icp")).string();
+    RunResult r = RunCli("scan " + seq.string() + " --out " + out + " --response srgb" + (k == 1 ? " --tracker icp" : ""));
+    ASSERT_EQ(r.status, 0) << r.output;
+    r = RunCli("eval " + seq.string() + " " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::printf("%s: %s", k == 0 ? "nr+icp (default)" : "icp", r.output.c_str());
+    ate[k] = ReadJson(fs::path(out) / "eval.json")["ate_rmse_m"].get<double>();
+    const auto rep = ReadJson(fs::path(out) / "report.json");
+    EXPECT_EQ(rep["fused_frames"].get<int>(), 500);
+    int photo_used = 0;
+    double depth_ref = 0;
+    for (const auto& f : rep["frames_detail"]) {
+      if (f["index"].get<int>() == 0) continue;  // the anchor: no tracking
+      const auto& terms = f["tracking"]["terms"];
+      EXPECT_EQ(terms["icp"].get<double>(), 1.0) << f["index"];
+      const double photo = terms["photometric"].get<double>();
+      EXPECT_GE(photo, 0.0);
+      EXPECT_LE(photo, k == 0 ? 1.0 : 0.0);
+      photo_used += photo > 0;
+      depth_ref = std::max(depth_ref, f["tracking"]["icp_depth_ref_m"].get<double>());
+    }
+    // The residual scale is set at the frames' median depth (0.8-3.4 m here).
+    EXPECT_GT(depth_ref, 0.8);
+    EXPECT_LT(depth_ref, 4.0);
+    std::printf("  frames with a photometric share: %d of 499\n", photo_used);
+  }
+  EXPECT_LE(ate[0], 0.02);
+  EXPECT_LE(ate[1], 0.02);
+  // Not worse than depth alone (within 1 mm: the photometric term's small share moves poses).
+  EXPECT_LE(ate[0], ate[1] + 0.001);
 }
 
 }  // namespace

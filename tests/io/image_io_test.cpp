@@ -38,8 +38,14 @@ TEST(ImageIo, DepthRoundTripKeepsAll16Bits) {
   for (std::size_t i = 0; i < d.size(); ++i) ASSERT_EQ(back[i], d[i]);
   const DepthImage m = DepthToMetres(back, 5000.0);
   EXPECT_FLOAT_EQ(m[1], 5462.f / 5000.f);
+  // 65535 is the sensors' and datasets' "no depth" (as 0 is), not a surface 13 m away.
+  EXPECT_EQ(m[5], 0.f);
   const DepthRawImage again = DepthFromMetres(m, 5000.0);
-  for (std::size_t i = 0; i < d.size(); ++i) ASSERT_EQ(again[i], d[i]);
+  for (std::size_t i = 0; i < d.size(); ++i) ASSERT_EQ(again[i], i == 5 ? 0 : d[i]) << "pixel " << i;
+  // A depth beyond the largest code is written as the largest valid one, never as "no depth".
+  DepthImage far(1, 1);
+  far[0] = 100.f;
+  EXPECT_EQ(DepthFromMetres(far, 5000.0)[0], 65534);
 }
 
 TEST(ImageIo, WrongBitDepthAndChannelsNameTheFile) {
