@@ -621,6 +621,30 @@
         <translation>Residuenskalen messen</translation>
     </message>
     <message>
+        <source>Weigh colour by its fit</source>
+        <translation>Farbe nach ihrer Passung gewichten</translation>
+    </message>
+    <message>
+        <source>nr+icp: cut the photometric term&apos;s share where it pulls the pose off the depth&apos;s own optimum</source>
+        <translation>nr+icp: den Anteil des photometrischen Terms kürzen, wo er die Pose vom Optimum der Tiefe wegzieht</translation>
+    </message>
+    <message>
+        <source>Turn on when colour and depth are not registered (an uncalibrated camera)</source>
+        <translation>Einschalten, wenn Farbe und Tiefe nicht registriert sind (eine unkalibrierte Kamera)</translation>
+    </message>
+    <message>
+        <source>Depth noise grows with distance</source>
+        <translation>Tiefenrauschen wächst mit der Entfernung</translation>
+    </message>
+    <message>
+        <source>Scale each point-to-plane residual with its depth squared, as a structured-light or stereo sensor&apos;s noise grows</source>
+        <translation>Jedes Punkt-zu-Ebene-Residuum mit dem Quadrat seiner Tiefe skalieren, wie das Rauschen eines Structured-Light- oder Stereo-Sensors wächst</translation>
+    </message>
+    <message>
+        <source>Turn on for real structured-light or stereo cameras (a Kinect)</source>
+        <translation>Für echte Structured-Light- oder Stereo-Kameras einschalten (eine Kinect)</translation>
+    </message>
+    <message>
         <source>Weigh the tracker&apos;s terms by their measured residuals (after a few frames) instead of the scales above</source>
         <translation>Die Terme des Trackers nach ihren gemessenen Residuen gewichten (nach einigen Bildern) statt nach den obigen Skalen</translation>
     </message>

@@ -256,10 +256,10 @@ double Pipeline::Quality(const tracking::TrackResult& r, const Verdict& v) const
 
 tracking::TrackerOptions Pipeline::TrackerNow() const {
   tracking::TrackerOptions t = o_.tracker;
-  // The point-to-plane scale holds at the frame's median depth and grows with the depth
-  // squared: a triangulating sensor's noise (a Kinect's 1.5 mm at 1 m, 2 cm at 3.5 m), so that
-  // far, noisy surfaces weigh less than near ones instead of pulling the pose with their noise.
-  if (UsesIcp(t.kind)) t.icp_depth_ref_m = float(depth_median_m_);
+  // With tracker.depth_noise_scaling, the point-to-plane scale holds at the frame's median
+  // depth and grows with the depth squared (a triangulating sensor's noise), so that far,
+  // noisy surfaces weigh less than near ones instead of pulling the pose with their noise.
+  if (UsesIcp(t.kind) && t.depth_noise_scaling) t.icp_depth_ref_m = float(depth_median_m_);
   if (!t.adaptive_scales) return t;
   if (icp_residuals_.size() >= kMinHistory)
     t.icp_sigma_m = float(std::max(double(t.icp_sigma_floor_m), Median(icp_residuals_)));
@@ -312,9 +312,10 @@ void Pipeline::WeighPhotometric(Backend& b, const tracking::TrackerOptions& topt
   // For small shares the pull falls about in proportion with the share: a share of 1/pull^2
   // leaves a pull of about 1/pull of the bound, less the farther the colour is off.
   const double share = 1.0 / (pull * pull) < kMinPhotoShare ? 0.0 : 1.0 / (pull * pull);
+  // (A share of 0 keeps the photometric terms in the health sums: the verification goes on
+  // judging the frame's radiance residual against the scan's usual one.)
   tracking::TrackerOptions t2 = topt;
   t2.photo_share = float(share);
-  if (share == 0) t2.kind = tracking::TrackerKind::kIcp;
   // The finest level again, from the pose found (its basin is reached).
   t2.levels = 1;
   t2.iterations[0] = topt.iterations[std::size_t(std::max(0, std::min(topt.levels, 4) - 1))];
@@ -492,7 +493,7 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       const tracking::MotionPrior prior{predicted, steps};
       if (b.HasRender()) b.EstimateExposureWithNextRun();  // (Verify estimates it at the pose found)
       r = track(predicted, &prior);
-      if (topt.kind == tracking::TrackerKind::kNrIcp && !r.lost) WeighPhotometric(b, topt, predicted, prior, &r);
+      if (topt.kind == tracking::TrackerKind::kNrIcp && topt.photo_agreement && !r.lost) WeighPhotometric(b, topt, predicted, prior, &r);
       verdict = Verify(r, in, recovering_);
     } else {
       // Lost: from the last pose carried on with its last motion (a camera that went on

@@ -160,6 +160,8 @@ constexpr Words kWords[] = {
     {"tracker.icp_sigma_m", "Depth residual scale", "Raise for noisy depth sensors"},
     {"tracker.photo_sigma", "Colour residual scale", "Raise for noisy colour"},
     {"tracker.adaptive_scales", "Measure residual scales", "Keep on; off to use the fixed scales above"},
+    {"tracker.photo_agreement", "Weigh colour by its fit", "Turn on when colour and depth are not registered (an uncalibrated camera)"},
+    {"tracker.depth_noise_scaling", "Depth noise grows with distance", "Turn on for real structured-light or stereo cameras (a Kinect)"},
     {"tracker.icp_sigma_floor_m", "Least depth residual scale", "Raise when very clean depth makes tracking overconfident"},
     {"tracker.photo_sigma_floor", "Least colour residual scale", "Raise when very clean colour makes tracking overconfident"},
     {"tracker.huber_k", "Outlier threshold", "Lower when moving objects disturb tracking"},
@@ -306,6 +308,12 @@ std::vector<Setting> MakeSettings() {
   v.push_back(Bool("tracker.adaptive_scales",
                    "Weigh the tracker's terms by their measured residuals (after a few frames) instead of the scales above",
                    HDRF_FIELD(tracker.adaptive_scales)));
+  v.push_back(Bool("tracker.photo_agreement",
+                   "nr+icp: cut the photometric term's share where it pulls the pose off the depth's own optimum",
+                   HDRF_FIELD(tracker.photo_agreement)));
+  v.push_back(Bool("tracker.depth_noise_scaling",
+                   "Scale each point-to-plane residual with its depth squared, as a structured-light or stereo sensor's noise grows",
+                   HDRF_FIELD(tracker.depth_noise_scaling)));
   v.push_back(Expert(Real("tracker.icp_sigma_floor_m", 1e-6, 10, "m",
                           "Smallest point-to-plane scale the measured scales may take",
                           HDRF_FIELD(tracker.icp_sigma_floor_m))));

@@ -40,6 +40,17 @@ struct TrackerOptions {
   // well each actually fits this sensor (a recording whose colour and depth are not
   // registered, say) rather than by the fixed guesses above.
   bool adaptive_scales = true;
+  // A triangulating sensor's depth noise grows with the depth squared (a Kinect: 1.5 mm at
+  // 1 m, 2 cm at 3.5 m): with this on, the point-to-plane scale holds at the frame's median
+  // depth and each residual is scaled by its depth squared (icp_depth_ref_m below). On 500
+  // real Kinect frames it takes the drift from 6.2 to 1.85 cm; on the simulator's rooms it
+  // drifts more than without (docs/engine.md, "Real sensors"), so it is off by default.
+  bool depth_noise_scaling = false;
+  // nr+icp: after each frame's solve, how far the photometric term pulled the pose off the
+  // depth's own optimum; where it pulled, its share of the solve is cut and the finest level
+  // solved again (Pipeline::WeighPhotometric). For colour that is not registered to the
+  // depth; off by default (it costs one more sum a frame, and a solve where it cuts).
+  bool photo_agreement = false;
   float icp_sigma_floor_m = 0.0005f, photo_sigma_floor = 0.02f;
   float huber_k = 1.345f;                 // Huber threshold, in units of the scales above
   float icp_max_dist_m = 0.10f;           // ICP association gates
@@ -70,7 +81,7 @@ struct TrackerOptions {
   int confirm_frames = 3;
   // The model is anchored by the first frame with at least this share of pixels with depth.
   float min_anchor_depth = 0.25f;
-  // Set frame by frame by the pipeline (not settings). The depth at which a point-to-plane
+  // Set frame by frame by the pipeline (not settings), with depth_noise_scaling: the depth at which a point-to-plane
   // residual has the scale icp_sigma_m: a residual nearer or farther is scaled with the depth
   // squared, as the noise of a triangulating depth sensor (structured light, stereo) grows;
   // 0: one scale at every depth.

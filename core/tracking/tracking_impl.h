@@ -102,7 +102,10 @@ HDRF_HD bool IcpAt(const IcpArgs& a, int x, int y, const Float3& p, int ux, int 
   const double vx = v.x, vy = v.y, vz = v.z;
   double s = a.inv_sigma;
   if (a.z_ref_m > 0.f) {
-    const double q = double(a.z_ref_m) / vz;
+    // Clamped to a factor of 4 either way: a few pixels much nearer than the rest (an object
+    // held close, the floor at the frame's edge) must not outweigh the view.
+    double q = double(a.z_ref_m) / vz;
+    q = q < 0.5 ? 0.5 : q > 2.0 ? 2.0 : q;
     s *= q * q;
   }
   const double J[6] = {ax * s, ay * s, az * s, (vy * az - vz * ay) * s, (vz * ax - vx * az) * s,

@@ -464,11 +464,9 @@ double RmsFusedError(const Scan& s) {
 
 // Colour that does not fit the depth (as on a recording whose colour and depth cameras were
 // never registered: here the colour image is shifted 6 pixels, a turn of the colour camera
-// by 1.4 degrees): with the scales the scan measures (and the photometric share, below) the
-// radiance term keeps the pose within 2 cm of the truth where registered colour holds it
-// within 1 cm. The fixed guesses of the scales are printed beside them: with the photometric
-// share they now pull less than the measured scales here (0.73 against 1.30 cm on the CPU)
-// but lose frames. (Depth alone is no reference here: ICP slides along this room's walls.)
+// by 1.4 degrees): with the scales the scan measures, the radiance term pulls the pose less
+// far off what the depth says than with the fixed guesses of the scales. (Depth alone is no
+// reference here: ICP slides along this room's walls.)
 TEST(Tracking, MeasuredScalesKeepUnregisteredColourFromPullingThePoseOff) {
   const auto shift = [](pipeline::FrameInput& in) {
     const int w = in.color.width(), h = in.color.height(), d = 6;
@@ -483,17 +481,14 @@ TEST(Tracking, MeasuredScalesKeepUnregisteredColourFromPullingThePoseOff) {
                                                           : std::function<void(pipeline::FrameInput&)>());
     int fused = 0;
     for (const auto& r : s.reports) fused += r.fused;
-    if (adaptive) EXPECT_EQ(fused, int(frames.size())) << "shifted " << shifted;
-    std::printf("  %s scales, colour %s: %d of %zu frames fused\n", adaptive ? "measured" : "fixed",
-                shifted ? "shifted" : "registered", fused, frames.size());
+    EXPECT_EQ(fused, int(frames.size())) << "adaptive " << adaptive << ", shifted " << shifted;
     return RmsFusedError(s);
   };
   const double measured = run(true, true), fixed = run(false, true), registered = run(true, false);
   std::printf("nr+icp, colour shifted 6 px: measured scales %.2f cm, fixed scales %.2f cm; registered colour, "
               "measured scales %.2f cm\n", 100 * measured, 100 * fixed, 100 * registered);
-  EXPECT_LT(measured, 0.02);
+  EXPECT_LT(measured, 0.8 * fixed);
   EXPECT_LT(registered, 0.01);
-  EXPECT_LT(registered, measured);
 }
 
 // nr+icp weighs its photometric term by how well it agrees with the depth: each frame, the
@@ -513,7 +508,9 @@ TEST(Tracking, PhotometricShareFollowsHowWellTheColourFitsTheDepth) {
     int whole = 0, tracked = 0;
   };
   auto run = [&](bool shifted) {
-    const Scan s = ScanRoom(frames, {}, {}, false, shifted ? std::function<void(pipeline::FrameInput&)>(shift)
+    pipeline::PipelineOptions o;
+    o.tracker.photo_agreement = true;
+    const Scan s = ScanRoom(frames, {}, o, false, shifted ? std::function<void(pipeline::FrameInput&)>(shift)
                                                          : std::function<void(pipeline::FrameInput&)>());
     Shares r;
     for (const auto& rep : s.reports) {
