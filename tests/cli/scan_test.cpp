@@ -250,7 +250,7 @@ TEST(ScanReal, SevenScenesKitchenAgainstItsReferencePoses) {
 // depth not registered, auto exposure, no calibration), long enough for drift to show. With
 // the depth's noise model a real Kinect needs (tracker.depth_noise_scaling) and the colour
 // weighed by its fit (tracker.photo_agreement: this colour is not registered) the tracker holds
-// within 2 cm of the reference (measured 1.86 cm with icp, 1.87 with nr+icp; a KinectFusion-
+// within 2 cm of the reference (measured 1.86 cm with icp, 1.88 with nr+icp; a KinectFusion-
 // class tracker, InfiniTAM v3's depth-only ICP at 2 cm voxels, holds 1.78 cm), and the
 // photometric term, which does not fit this colour, does not make it worse than depth alone:
 // each frame's report says which terms tracked it and with what weight.
