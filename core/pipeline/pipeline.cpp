@@ -493,7 +493,8 @@ FrameReport Pipeline::Process(const FrameInput& in) {
       const tracking::MotionPrior prior{predicted, steps};
       if (b.HasRender()) b.EstimateExposureWithNextRun();  // (Verify estimates it at the pose found)
       r = track(predicted, &prior);
-      if (topt.kind == tracking::TrackerKind::kNrIcp && topt.photo_agreement && !r.lost) WeighPhotometric(b, topt, predicted, prior, &r);
+      if (topt.kind == tracking::TrackerKind::kNrIcp && topt.photo_agreement && !r.lost)
+        WeighPhotometric(b, topt, predicted, prior, &r);
       verdict = Verify(r, in, recovering_);
     } else {
       // Lost: from the last pose carried on with its last motion (a camera that went on
