@@ -268,7 +268,7 @@ TEST(ScanReal, SevenScenesKitchen500FramesHoldTwoCentimetres) {
     ASSERT_EQ(r.status, 0) << r.output;
     r = RunCli("eval " + seq.string() + " " + out);
     ASSERT_EQ(r.status, 0) << r.output;
-    std::printf("%s: %s", k == 0 ? "nr+icp (default)" : "icp", r.output.c_str());
+    std::printf("%s: %s", k == 0 ? "nr+icp" : "icp", r.output.c_str());
     ate[k] = ReadJson(fs::path(out) / "eval.json")["ate_rmse_m"].get<double>();
     const auto rep = ReadJson(fs::path(out) / "report.json");
     EXPECT_EQ(rep["fused_frames"].get<int>(), 500);
