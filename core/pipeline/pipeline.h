@@ -229,6 +229,12 @@ class Pipeline {
   double Quality(const tracking::TrackResult& r, const Verdict& v) const;
   tracking::TrackerOptions TrackerNow() const;  // the settings, with measured scales
   double depth_median_m_ = 0;  // this frame's median depth (the sampled pixels with depth)
+  // Every 4th pixel in x and y: the share with depth, the share of those beyond `far_m`, and
+  // their median depth (0: none).
+  struct DepthSamples {
+    double share = 0, beyond_far = 0, median_m = 0;
+  };
+  static DepthSamples SampleDepth(const DepthImage& depth_m, float far_m);
   // nr+icp: the photometric term weighed by how well it agrees with the depth at the pose
   // found (see the definition); the pose solved again with its share where it does not.
   void WeighPhotometric(Backend& b, const tracking::TrackerOptions& topt, const Pose& start,
