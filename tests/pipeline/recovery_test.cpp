@@ -462,17 +462,20 @@ double RmsFusedError(const Scan& s) {
   return n ? std::sqrt(sum / n) : 1e9;
 }
 
+// The colour image shifted 6 pixels to the right against the depth (colour not registered).
+void ShiftColourSixPixels(pipeline::FrameInput& in) {
+  const int w = in.color.width(), h = in.color.height(), d = 6;
+  for (int y = 0; y < h; ++y)
+    for (int x = w - 1; x >= 0; --x) in.color(x, y) = in.color(std::max(0, x - d), y);
+}
+
 // Colour that does not fit the depth (as on a recording whose colour and depth cameras were
 // never registered: here the colour image is shifted 6 pixels, a turn of the colour camera
 // by 1.4 degrees): with the scales the scan measures, the radiance term pulls the pose less
 // far off what the depth says than with the fixed guesses of the scales. (Depth alone is no
 // reference here: ICP slides along this room's walls.)
 TEST(Tracking, MeasuredScalesKeepUnregisteredColourFromPullingThePoseOff) {
-  const auto shift = [](pipeline::FrameInput& in) {
-    const int w = in.color.width(), h = in.color.height(), d = 6;
-    for (int y = 0; y < h; ++y)
-      for (int x = w - 1; x >= 0; --x) in.color(x, y) = in.color(std::max(0, x - d), y);
-  };
+  const auto shift = ShiftColourSixPixels;
   const std::vector<int> frames = Range(0, 100);
   auto run = [&](bool adaptive, bool shifted) {
     pipeline::PipelineOptions o;
@@ -498,11 +501,7 @@ TEST(Tracking, MeasuredScalesKeepUnregisteredColourFromPullingThePoseOff) {
 // pixels against the depth pulls on more of them and loses share there, and the report says
 // so frame by frame.
 TEST(Tracking, PhotometricShareFollowsHowWellTheColourFitsTheDepth) {
-  const auto shift = [](pipeline::FrameInput& in) {
-    const int w = in.color.width(), h = in.color.height(), d = 6;
-    for (int y = 0; y < h; ++y)
-      for (int x = w - 1; x >= 0; --x) in.color(x, y) = in.color(std::max(0, x - d), y);
-  };
+  const auto shift = ShiftColourSixPixels;
   const std::vector<int> frames = Range(0, 100);
   struct Shares {
     double mean = 0, rms_error = 0;
