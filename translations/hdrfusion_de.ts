@@ -622,7 +622,7 @@
     </message>
     <message>
         <source>Weigh colour by its fit</source>
-        <translation>Farbe nach ihrer Passung gewichten</translation>
+        <translation>Farbe nach Passung gewichten</translation>
     </message>
     <message>
         <source>nr+icp: cut the photometric term&apos;s share where it pulls the pose off the depth&apos;s own optimum</source>
@@ -634,7 +634,7 @@
     </message>
     <message>
         <source>Depth noise grows with distance</source>
-        <translation>Tiefenrauschen wächst mit der Entfernung</translation>
+        <translation>Tiefenrauschen nach Abstand</translation>
     </message>
     <message>
         <source>Scale each point-to-plane residual with its depth squared, as a structured-light or stereo sensor&apos;s noise grows</source>
