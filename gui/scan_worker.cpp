@@ -16,6 +16,7 @@
 #include "io/ocio_display.h"
 #include "io/ply.h"
 #include "io/project.h"
+#include "jobs/scan_job.h"
 #include "tonemap/operator.h"
 #include "io/source_spec.h"
 #include "io/tum.h"
@@ -85,16 +86,16 @@ void ScanWorker::ResetMesher() {
   mesh_frame_ = -1;
   ++mesh_generation_;
   mesher_->busy = false;
-  const volume::VolumeOptions o = session_->pipeline().options().volume;
+  const volume::VolumeOptions o = job_->session().pipeline().options().volume;
   QMetaObject::invokeMethod(mesher_, [m = mesher_, o] { m->Reset(o); }, Qt::QueuedConnection);
 }
 
 void ScanWorker::RequestMesh(bool last) {
-  if (!session_) return;
-  auto changed = std::make_shared<const volume::BrickSet>(session_->pipeline().ChangedBricks());
+  if (!job_) return;
+  auto changed = std::make_shared<const volume::BrickSet>(job_->session().pipeline().ChangedBricks());
   mesher_->busy = true;
   mesh_time_ms_ = QDateTime::currentMSecsSinceEpoch();
-  mesh_frame_ = session_->frames() - 1;
+  mesh_frame_ = job_->session().frames() - 1;
   // The whole surface at a stop (last), else the detail chosen for a running scan.
   const int step = last ? 1 : preview_step_.load();
   const int refresh = step > 1 ? kPreviewRefresh : 0;
@@ -132,54 +133,43 @@ void ScanWorker::OpenSource() {
 }
 
 void ScanWorker::Open() {
-  session_.reset();
+  const std::unique_ptr<jobs::ScanJob> previous = std::move(job_);
   mesh_.reset();
   // A live camera already streaming from the same spec stays open (and keeps recording):
   // only the model starts again.
   if (!(live_ && source_spec_ == settings_.source && !lost_)) OpenSource();
-  session_ = std::make_unique<pipeline::ScanSession>(settings_.pipeline, source_->sensor().camera, source_->sensor());
+  job_ = std::make_unique<jobs::ScanJob>(settings_.pipeline, source_->sensor(), "studio", settings_.autosave_s);
+  job_->SetSource(source_->description(), source_spec_);
+  // The previous model was dropped on purpose: so is its recovery file (kept where the new
+  // source could not be opened).
+  if (previous) previous->DropRecovery();
   ClearSeries();
   ResetMesher();
   images_time_ms_ = 0;
-  // The previous model was dropped on purpose: so is its recovery file.
-  DropRecovery();
-  recovery_ = io::NewRecoveryFile("studio");
-  saved_frames_ = saved_by_user_ = 0;
-  autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
 }
 
-void ScanWorker::DropRecovery() {
-  std::error_code ec;
-  if (!recovery_.empty()) std::filesystem::remove(recovery_, ec);
+void ScanWorker::DropJob() {
+  if (job_) job_->DropRecovery();
+  job_.reset();
 }
 
-void ScanWorker::Autosave(bool force) {
-  if (!session_ || session_->frames() == 0 || session_->frames() == saved_frames_ || recovery_.empty()) return;
-  const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
-  if (!force && (settings_.autosave_s <= 0 || double(now - autosave_time_ms_) < 1000 * settings_.autosave_s)) return;
-  autosave_time_ms_ = now;
-  try {
-    std::filesystem::create_directories(recovery_.parent_path());
-    io::SaveProject(recovery_, *session_, {source_ ? source_->description() : std::string(), source_spec_, false});
-    saved_frames_ = session_->frames();
-  } catch (const std::exception& e) {
-    emit failed(tr("Autosave failed (the scan goes on): %1").arg(QString::fromStdString(e.what())));
-  }
+void ScanWorker::Autosave() {
+  if (!job_) return;
+  if (const std::string e = job_->Autosave(); !e.empty())
+    emit failed(tr("Autosave failed (the scan goes on): %1").arg(QString::fromStdString(e)));
 }
 
 void ScanWorker::SaveProject(const QString& path) {
-  if (!session_ || session_->frames() == 0) {
+  if (!job_ || job_->session().frames() == 0) {
     emit projectSaved(false, path, tr("Nothing to save: no frame has been scanned yet"));
     return;
   }
   try {
     const std::filesystem::path file = path.toStdString();
-    io::SaveProject(file, *session_, {source_ ? source_->description() : std::string(), source_spec_, true});
-    saved_frames_ = saved_by_user_ = session_->frames();
-    DropRecovery();
+    job_->Save(file, true);
     std::error_code ec;
     emit projectSaved(true, path, tr("Saved %1 frames to %2 (%L3 MiB)")
-                                      .arg(session_->frames())
+                                      .arg(job_->session().frames())
                                       .arg(path)
                                       .arg(double(std::filesystem::file_size(file, ec)) / (1 << 20), 0, 'f', 1));
   } catch (const std::exception& e) {
@@ -192,31 +182,34 @@ void ScanWorker::OpenProject(const QString& path) {
   resume_ = false;
   try {
     const io::Project p = io::LoadProject(path.toStdString());
-    std::unique_ptr<pipeline::ScanSession> session = io::ResumeSession(p);
-    DropRecovery();
-    session_ = std::move(session);
+    auto job = std::make_unique<jobs::ScanJob>(p, nullptr, "studio", settings_.autosave_s);
+    DropJob();
+    job_ = std::move(job);
     ClearSeries();
     ResetMesher();
-    settings_.pipeline = session_->pipeline().options();
+    settings_.pipeline = job_->session().pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
-    recovery_ = io::NewRecoveryFile("studio");
-    saved_frames_ = saved_by_user_ = session_->frames();
-    autosave_time_ms_ = QDateTime::currentMSecsSinceEpoch();
-    QString msg = tr("Opened %1: %2 frames").arg(path).arg(session_->frames());
+    QString msg = tr("Opened %1: %2 frames").arg(path).arg(job_->session().frames());
     const QString src = QString::fromStdString(p.source);
     try {
       if (p.source_spec.empty()) throw Error("the project does not say how its source was opened");
       OpenSource();
-      if (!io::SameCamera(source_->sensor().camera, p.sensor.camera)) {
-        source_.reset();
-        live_ = nullptr;
-        msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");
-      } else if (source_->size() >= 0 && io::SameSource(p, source_spec_, source_->description())) {
-        msg += source_->Skip(p.resume.frames) ? tr(" — Start continues after frame %1").arg(p.resume.frames)
-                                              : tr(" — its source has no frames left");
-      } else {
-        msg += tr(" — Start continues from the first frame of %1, which must be where the scan stopped")
-                   .arg(QString::fromStdString(source_->description()));
+      switch (job_->Continue(p, *source_, source_spec_)) {
+        case jobs::ContinueFrom::kOtherCamera:
+          source_.reset();
+          live_ = nullptr;
+          msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");
+          break;
+        case jobs::ContinueFrom::kAfterScanned:
+          msg += tr(" — Start continues after frame %1").arg(p.resume.frames);
+          break;
+        case jobs::ContinueFrom::kNothingLeft:
+          msg += tr(" — its source has no frames left");
+          break;
+        case jobs::ContinueFrom::kFirstFrame:
+          msg += tr(" — Start continues from the first frame of %1, which must be where the scan stopped")
+                     .arg(QString::fromStdString(source_->description()));
+          break;
       }
     } catch (const std::exception& e) {
       source_.reset();
@@ -233,18 +226,15 @@ void ScanWorker::OpenProject(const QString& path) {
 
 void ScanWorker::Shutdown() {
   running_ = false;
-  if (session_ && session_->frames() > saved_by_user_)
-    Autosave(true);
-  else
-    DropRecovery();
+  if (job_) job_->Close();
 }
 
 void ScanWorker::Publish() {
-  if (!session_) return;
+  if (!job_) return;
   auto s = std::make_shared<Snapshot>();
-  pipeline::Pipeline& pipe = session_->pipeline();
+  pipeline::Pipeline& pipe = job_->session().pipeline();
   RequestMesh(true);  // the whole model (every brick is new to the mesher): meshUpdated follows
-  if (!session_->reports().empty()) s->report = session_->reports().back();
+  if (!job_->session().reports().empty()) s->report = job_->session().reports().back();
   s->images.render = pipe.Render(pipe.pose());
   s->has_images = true;
   FillScanState(*s);
@@ -258,7 +248,7 @@ void ScanWorker::ClearSeries() {
 }
 
 void ScanWorker::SyncSeries() {
-  const std::vector<pipeline::FrameReport>& reports = session_->reports();
+  const std::vector<pipeline::FrameReport>& reports = job_->session().reports();
   if (poses_.size() > reports.size()) ClearSeries();
   for (std::size_t i = poses_.size(); i < reports.size(); ++i) {
     const pipeline::FrameReport& r = reports[i];
@@ -269,8 +259,8 @@ void ScanWorker::SyncSeries() {
 }
 
 void ScanWorker::FillScanState(Snapshot& s) {
-  const pipeline::Pipeline& pipe = session_->pipeline();
-  s.camera = session_->sensor().camera;
+  const pipeline::Pipeline& pipe = job_->session().pipeline();
+  s.camera = job_->session().sensor().camera;
   SyncSeries();
   s.trajectory = poses_.prefix();
   s.exposure_estimated = exposure_estimated_.prefix();
@@ -297,7 +287,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
     Open();
     QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
     if (live_) msg = tr("Live preview: %1 (Start scans)").arg(QString::fromStdString(source_->description()));
-    const pipeline::Pipeline& pipe = session_->pipeline();
+    const pipeline::Pipeline& pipe = job_->session().pipeline();
     if (!pipe.device_note().empty()) msg += " — " + wizard::EngineText(pipe.device_note());
     if (!pipe.settings_note().empty()) msg += " — " + wizard::EngineText(pipe.settings_note());
     for (const std::string& w : source_->sensor().warnings) msg += " — " + wizard::EngineText(w);
@@ -309,7 +299,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
   } catch (const std::exception& e) {
     live_ = nullptr;
     source_.reset();
-    session_.reset();
+    job_.reset();
     emit failed(tr("Cannot open the source: %1").arg(QString::fromStdString(e.what())));
     emit stateChanged(false, tr("No source"));
   }
@@ -323,13 +313,13 @@ void ScanWorker::Kick() {
 
 void ScanWorker::Loop() {
   loop_scheduled_ = false;
-  if (running_ && session_)
+  if (running_ && job_)
     Step();
   else if (live_ && !lost_)
     Preview();
   else
     return;
-  if ((running_ && session_) || (live_ && !lost_)) Kick();
+  if ((running_ && job_) || (live_ && !lost_)) Kick();
 }
 
 void ScanWorker::Start() {
@@ -339,7 +329,7 @@ void ScanWorker::Start() {
     TryReconnect(0);
     return;
   }
-  if (!session_) {
+  if (!job_) {
     try {
       Open();
     } catch (const std::exception& e) {
@@ -353,7 +343,7 @@ void ScanWorker::Start() {
   }
   if (running_) return;
   running_ = true;
-  emit stateChanged(true, tr("Scanning on the %1").arg(session_->pipeline().device() == Device::kCuda ? "GPU" : "CPU"));
+  emit stateChanged(true, tr("Scanning on the %1").arg(job_->session().pipeline().device() == Device::kCuda ? "GPU" : "CPU"));
   Kick();
 }
 
@@ -362,8 +352,8 @@ void ScanWorker::Pause() {
   if (!running_) return;
   running_ = false;
   // The surface as it stands when the scan stops.
-  if (session_ && session_->frames() > 0) RequestMesh(true);
-  emit stateChanged(false, tr("Paused after %1 frames").arg(session_ ? session_->frames() : 0));
+  if (job_ && job_->session().frames() > 0) RequestMesh(true);
+  emit stateChanged(false, tr("Paused after %1 frames").arg(job_ ? job_->session().frames() : 0));
 }
 
 void ScanWorker::Stop() {
@@ -372,8 +362,8 @@ void ScanWorker::Stop() {
   // Rewind the source; keep the model (export still possible) until Reset. A live camera
   // has nothing to rewind: it stays open and previews.
   try {
-    if (session_ && !live_ && !lost_) source_ = OpenFrameSource(settings_.source);
-    emit stateChanged(false, tr("Stopped; the model of %1 frames is kept").arg(session_ ? session_->frames() : 0));
+    if (job_ && !live_ && !lost_) source_ = OpenFrameSource(settings_.source);
+    emit stateChanged(false, tr("Stopped; the model of %1 frames is kept").arg(job_ ? job_->session().frames() : 0));
   } catch (const std::exception& e) {
     emit failed(QString::fromStdString(e.what()));
   }
@@ -392,23 +382,23 @@ void ScanWorker::Reset() {
 }
 
 void ScanWorker::Step() {
-  if (!running_ || !session_) return;
+  if (!running_ || !job_) return;
   try {
     pipeline::FrameInput f;
     if (!source_->Next(f)) {
       running_ = false;
-      emit finished(session_->frames());
-      emit stateChanged(false, tr("Finished: %1 frames").arg(session_->frames()));
+      emit finished(job_->session().frames());
+      emit stateChanged(false, tr("Finished: %1 frames").arg(job_->session().frames()));
       return;
     }
     if (live_) OnLiveFrame(live_->last());
     auto s = std::make_shared<Snapshot>();
-    s->report = session_->Process(f);
-    pipeline::Pipeline& pipe = session_->pipeline();
+    s->report = job_->session().Process(f);
+    pipeline::Pipeline& pipe = job_->session().pipeline();
     const std::int64_t now = QDateTime::currentMSecsSinceEpoch();
     const bool last = source_->size() > 0 && s->report.index + 1 >= source_->size();
     // The surface: the bricks changed since the last refresh go to the mesher's thread.
-    if (last || (!mesher_->busy && (mesh_frame_ < 0 || (session_->frames() - 1 - mesh_frame_ >=
+    if (last || (!mesher_->busy && (mesh_frame_ < 0 || (job_->session().frames() - 1 - mesh_frame_ >=
                                                              std::max(1, settings_.mesh_every_frames) &&
                                                          now - mesh_time_ms_ >= settings_.mesh_min_interval_ms))))
       RequestMesh(last);
@@ -428,13 +418,13 @@ void ScanWorker::Step() {
     FillScanState(*s);
     if (live_) s->live = Status();
     emit snapshot(std::move(s));
-    Autosave(false);
+    Autosave();
   } catch (const sensors::DeviceLost&) {
     Lost();
   } catch (const std::exception& e) {
     running_ = false;
     emit failed(tr("Scan paused at frame %1: %2. The model so far is kept.")
-                    .arg(session_->frames())
+                    .arg(job_->session().frames())
                     .arg(QString::fromStdString(e.what())));
     emit stateChanged(false, tr("Paused (error)"));
   }
@@ -449,10 +439,10 @@ void ScanWorker::Preview() {
     s->color = f.color.Clone();
     s->images.depth = io::DepthToMetres(f.depth_mm, live_->sensor().depth_scale);
     s->camera = live_->sensor().camera;
-    if (session_) {
+    if (job_) {
       SyncSeries();
       s->trajectory = poses_.prefix();
-      s->report.index = session_->frames() - 1;
+      s->report.index = job_->session().frames() - 1;
     }
     s->mesh = mesh_;
     s->frames_total = source_->size();
@@ -615,8 +605,8 @@ void ScanWorker::Lost() {
   live_ = nullptr;
   source_.reset();
   // The surface of the model as it is kept.
-  if (was_running && session_ && session_->frames() > 0) RequestMesh(true);
-  const int frames = session_ ? session_->frames() : 0;
+  if (was_running && job_ && job_->session().frames() > 0) RequestMesh(true);
+  const int frames = job_ ? job_->session().frames() : 0;
   const QString msg = was_running
       ? tr("Camera %1 was unplugged: the scan is paused after %2 frames and the model is kept. "
            "Plug it back in to resume.").arg(who).arg(frames)
@@ -654,8 +644,8 @@ void ScanWorker::TryReconnect(int attempt) {
     reconnecting_ = false;
     fps_ = 0;
     last_frame_time_ = -1;
-    const int frames = session_ ? session_->frames() : 0;
-    if (resume_ && session_) {
+    const int frames = job_ ? job_->session().frames() : 0;
+    if (resume_ && job_) {
       running_ = true;
       emit cameraBack(tr("Camera %1 is back: the scan resumes at frame %2").arg(Describe(live_->camera().entry())).arg(frames + 1));
       emit stateChanged(true, tr("Scanning (resumed after a reconnect)"));
@@ -679,12 +669,12 @@ void ScanWorker::TryReconnect(int attempt) {
 
 void ScanWorker::ExportMesh(const QString& path, const QString& tone) {
   cancel_export_ = false;
-  if (!session_) {
+  if (!job_) {
     emit exportDone(false, tr("Nothing to export: no model"));
     return;
   }
   try {
-    const mesh::Mesh m = session_->pipeline().ExtractMesh([this](double f) {
+    const mesh::Mesh m = job_->session().pipeline().ExtractMesh([this](double f) {
       emit exportProgress(0.9 * f);
       return !cancel_export_;
     });
@@ -693,7 +683,7 @@ void ScanWorker::ExportMesh(const QString& path, const QString& tone) {
     const auto& decl = tonemap::FindOperator(spec.op);
     auto op = decl.make(tonemap::ResolveParams(decl, spec.values), Device::kCpu);
     Image<Float3> shown;
-    op->Map(session_->pipeline().Render(session_->pipeline().pose()).radiance, shown, tonemap::FrameTime::Still());
+    op->Map(job_->session().pipeline().Render(job_->session().pipeline().pose()).radiance, shown, tonemap::FrameTime::Still());
     const std::vector<Rgb8> display = io::OcioDisplay().Encode(op->MapList(m.radiance));
     // Through a temporary file: nothing half-written.
     io::WritePly(path.toStdString(), m, display.size() == m.position.size() ? &display : nullptr);
@@ -708,9 +698,9 @@ void ScanWorker::ExportMesh(const QString& path, const QString& tone) {
 
 void ScanWorker::ExportTrajectory(const QString& path) {
   try {
-    if (!session_) throw Error("no scan");
+    if (!job_) throw Error("no scan");
     std::vector<io::TimedPose> t;
-    for (const pipeline::FrameReport& r : session_->reports()) t.push_back({r.timestamp, r.T_world_camera});
+    for (const pipeline::FrameReport& r : job_->session().reports()) t.push_back({r.timestamp, r.T_world_camera});
     io::WriteTrajectory(path.toStdString(), t);
     emit exportDone(true, tr("Wrote %1 (%2 poses)").arg(path).arg(t.size()));
   } catch (const std::exception& e) {
@@ -720,8 +710,8 @@ void ScanWorker::ExportTrajectory(const QString& path) {
 
 void ScanWorker::ExportRender(const QString& path) {
   try {
-    if (!session_) throw Error("no model");
-    const auto r = session_->pipeline().Render(session_->pipeline().pose());
+    if (!job_) throw Error("no model");
+    const auto r = job_->session().pipeline().Render(job_->session().pipeline().pose());
     io::WriteExr(path.toStdString(), r.radiance);
     emit exportDone(true, tr("Wrote %1").arg(path));
   } catch (const std::exception& e) {
@@ -730,13 +720,13 @@ void ScanWorker::ExportRender(const QString& path) {
 }
 
 void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& options) {
-  if (!session_ || session_->frames() == 0) {
+  if (!job_ || job_->session().frames() == 0) {
     emit assetDone(false, tr("Nothing to export: scan first"), {});
     return;
   }
   try {
     emit assetProgress(0, tr("mesh"));
-    const io::ScanData scan = io::ScanDataFromSession(*session_, source_spec_, [this](double f) {
+    const io::ScanData scan = io::ScanDataFromSession(job_->session(), source_spec_, [this](double f) {
       emit assetProgress(0.1 * f, tr("mesh"));
       return !cancel_export_;
     });

@@ -25,6 +25,7 @@
 #include <optional>
 #include <vector>
 
+#include "jobs/scan_job.h"
 #include "mesh/incremental_mesh.h"
 #include "mesh/mesh.h"
 #include "pipeline/frame_source.h"
@@ -214,8 +215,8 @@ class ScanWorker : public QObject {
   void ResetMesher();           // a new model: the mesher starts empty
   void OnMesh(std::shared_ptr<const mesh::Mesh> m);
   void Open();
-  void Autosave(bool force);  // to recovery_ when due (or now), if frames were added since
-  void DropRecovery();        // the recovery file is no longer needed
+  void Autosave();  // the scan to its recovery file when due (jobs::ScanJob::Autosave)
+  void DropJob();   // the model dropped on purpose, and its recovery file with it
   void Publish();             // a snapshot of the model as it stands (after opening a project)
   void FillScanState(Snapshot& s);  // trajectory, exposures, mesh, volume, device
   // The shared series brought up to the session's reports (only the new frames' values are
@@ -242,11 +243,7 @@ class ScanWorker : public QObject {
   std::unique_ptr<sensors::OniRecording> oni_;
   QString recording_path_;
   double fps_ = 0, last_frame_time_ = -1;
-  std::unique_ptr<pipeline::ScanSession> session_;
-  std::filesystem::path recovery_;      // this session's recovery file (autosaves)
-  int saved_frames_ = 0;                // frames in the last save or autosave of this session
-  int saved_by_user_ = 0;               // frames in the last save the user asked for
-  std::int64_t autosave_time_ms_ = 0;
+  std::unique_ptr<jobs::ScanJob> job_;  // the scan: its session, recovery file and project
   std::shared_ptr<const mesh::Mesh> mesh_;
   std::int64_t mesh_time_ms_ = 0, images_time_ms_ = 0;
   int mesh_frame_ = -1;             // the frame of the last mesh request

@@ -49,6 +49,7 @@ class SettingError : public Error {
 class Cancelled : public Error {
  public:
   Cancelled() : Error("cancelled") {}
+  explicit Cancelled(const std::string& what) : Error(what) {}  // what was kept, and where
 };
 
 }  // namespace hdrf

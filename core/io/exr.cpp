@@ -18,7 +18,7 @@
 #include <set>
 #include <vector>
 
-#include "io/input_file.h"
+#include "common/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 

@@ -6,7 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/input_file.h"
+#include "common/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 

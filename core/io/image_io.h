@@ -16,7 +16,7 @@ namespace hdrf::io {
 using HeaderCheck = std::function<void(int width, int height)>;
 
 // 8-bit, 3-channel colour (an alpha channel is dropped). Throws InputError naming the file
-// when it is missing, not a regular file, larger than io/input_file.h allows (bytes, or
+// when it is missing, not a regular file, larger than common/input_file.h allows (bytes, or
 // pixels from its header, or more than the free memory holds), unreadable, or has the wrong
 // bit depth or channel count.
 ColorImage ReadColorImage(const std::filesystem::path& file, const HeaderCheck& check_header = {});

@@ -1,7 +1,7 @@
 #include "io/json_file.h"
 
 #include "common/error.h"
-#include "io/input_file.h"
+#include "common/input_file.h"
 
 namespace hdrf::io {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/input_file.h"
+#include "common/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 #include "tonemap/display.h"

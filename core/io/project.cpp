@@ -13,7 +13,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "io/input_file.h"
+#include "common/input_file.h"
 #include "io/output_file.h"
 #include "common/error.h"
 #include "io/image_io.h"

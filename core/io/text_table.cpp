@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "io/input_file.h"
+#include "common/input_file.h"
 
 namespace hdrf::io {
 

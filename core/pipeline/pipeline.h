@@ -228,6 +228,34 @@ class Pipeline {
   Verdict Verify(const tracking::TrackResult& r, const FrameInput& in, bool recovering, bool relocalised = false);
   double Quality(const tracking::TrackResult& r, const Verdict& v) const;
   tracking::TrackerOptions TrackerNow() const;  // the settings, with measured scales
+
+  // The frame's stages around the pose (pipeline.cpp).
+  FrameReport Wait(FrameReport rep);  // no frame has anchored the model, and this one cannot
+  void RefreshReference(const Float3& clip);  // the last ray cast as this frame's reference
+  double CompensateExposure(const FrameInput& in, bool accepted, const exposure::ExposureEstimate& e, FrameReport* rep);
+  void Fuse(double t_ratio, double drift, FrameReport* rep);
+  void OfferKeyframe(const FrameInput& in, RelocCode code, const FrameReport& rep);
+  void LeaveReference(const FrameInput& in, const Float3& clip, bool accepted);
+
+  // The pose search (pose_search.cpp): the frame's pose found, verified and settled.
+  struct PoseFound {
+    tracking::TrackResult r;
+    Verdict verdict;
+    bool accepted = false;  // a pose that verifies: the camera's pose now
+    bool fuse = false;      // ...and confirmed: the frame is fused
+    bool searched = false;  // the model was ray cast from poses other than the last one
+    RelocCode code;         // the frame's relocalisation code, where the search made it
+  };
+  PoseFound FindPose(const FrameInput& in, const Float3& clip, FrameReport* rep);
+  PoseFound Anchor(const FrameInput& in, FrameReport* rep);
+  // Tracked from `from` (with the motion prior, if any) and judged with `judge` (else `topt`).
+  tracking::TrackResult Track(const Pose& from, const tracking::TrackerOptions& topt,
+                              const tracking::MotionPrior* prior = nullptr, const tracking::TrackerOptions* judge = nullptr);
+  void TrackFromPrediction(const FrameInput& in, const tracking::TrackerOptions& topt, PoseFound* f);
+  void SearchAfterLoss(const FrameInput& in, const Float3& clip, const tracking::TrackerOptions& topt, PoseFound* f);
+  void Relocalise(const FrameInput& in, const Float3& clip, const tracking::TrackerOptions& topt, PoseFound* f,
+                  FrameReport* rep);
+  void Settle(const FrameInput& in, PoseFound* f, FrameReport* rep);  // the frame's state from its verdict
   double depth_median_m_ = 0;  // this frame's median depth (the sampled pixels with depth)
   // Every 4th pixel in x and y: the share with depth, the share of those beyond `far_m`, and
   // their median depth (0: none).

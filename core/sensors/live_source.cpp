@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "common/message.h"
-#include "io/input_file.h"
+#include "common/input_file.h"
 #include "io/image_io.h"
 #include "io/sensor_json.h"
 #include "io/source_spec.h"
@@ -199,7 +199,7 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
   Impl& m = *impl_;
   m.file = file;
   if (!fs::exists(file)) throw InputError(file, "recording not found");
-  io::CheckInputFile(file, std::uintmax_t(1) << 40, "a recording");
+  CheckInputFile(file, std::uintmax_t(1) << 40, "a recording");
   const fs::path sensor_file = file.string() + ".sensor.json";
   if (fs::exists(sensor_file)) {
     m.sensor = io::ReadSensorJson(sensor_file);
@@ -210,7 +210,7 @@ OniPlaybackSource::OniPlaybackSource(const fs::path& file) : impl_(std::make_uni
   m.sensor.depth_scale = 1000.0;
   const fs::path exposure_file = file.string() + ".exposure.txt";
   if (fs::exists(exposure_file)) {
-    std::istringstream in(io::ReadInputFile(exposure_file, io::kMaxTextBytes, "an exposure list"));
+    std::istringstream in(ReadInputFile(exposure_file, kMaxTextBytes, "an exposure list"));
     std::string line;
     int number = 0;
     while (std::getline(in, line)) {

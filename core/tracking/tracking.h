@@ -25,6 +25,9 @@ enum class TrackerKind {
 };
 TrackerKind ParseTrackerKind(const std::string& s);  // "nr", "nr+icp", "icp", "intensity"
 const char* TrackerName(TrackerKind k);
+// Whether a tracker matches depth (point-to-plane ICP) and whether it matches colour.
+inline bool UsesIcp(TrackerKind k) { return k == TrackerKind::kNrIcp || k == TrackerKind::kIcp; }
+inline bool UsesPhoto(TrackerKind k) { return k != TrackerKind::kIcp; }
 
 struct TrackerOptions {
   TrackerKind kind = TrackerKind::kNrIcp;

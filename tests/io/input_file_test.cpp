@@ -1,4 +1,4 @@
-// Limits on what is read (io/input_file.h): sizes from headers before decoding, file sizes,
+// Limits on what is read (common/input_file.h): sizes from headers before decoding, file sizes,
 // special files, paths that leave the sequence folder.
 #include <gtest/gtest.h>
 #include <sys/resource.h>

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-namespace hdrf::io {
+namespace hdrf {
 
 inline constexpr std::uintmax_t kMiB = std::uintmax_t(1) << 20;
 inline constexpr std::uintmax_t kMaxTextBytes = 64 * kMiB;      // JSON, lists, tables, trajectories
@@ -44,4 +44,4 @@ std::optional<ImageHeader> PeekImageHeader(const std::filesystem::path& file, co
 // is more than this program reads, or more than the machine's free memory can hold.
 void CheckImageDimensions(const std::filesystem::path& file, long long w, long long h, int bytes_per_pixel);
 
-}  // namespace hdrf::io
+}  // namespace hdrf

@@ -1,4 +1,4 @@
-#include "io/input_file.h"
+#include "common/input_file.h"
 
 #include <cerrno>
 #include <cstring>
@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "common/host_memory.h"
 
-namespace hdrf::io {
+namespace hdrf {
 
 namespace fs = std::filesystem;
 
@@ -135,4 +135,4 @@ void CheckImageDimensions(const fs::path& file, long long w, long long h, int by
                                Mib(*free) + " free");
 }
 
-}  // namespace hdrf::io
+}  // namespace hdrf
