@@ -185,8 +185,11 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
   if (scan.keyframes) camera = scan.keyframes->sensor.camera;
   if ((o.render_width > 0) && !camera.Valid())
     throw SettingError("render", "renders need the scan's camera (keyframes.json and sensor.json in the scan folder)");
-  if (o.render_width > 0 && o.render_frame >= int(std::max<std::size_t>(1, scan.trajectory.size())))
-    throw SettingError("render frame", "the scan has " + std::to_string(scan.trajectory.size()) + " poses");
+  // Checked whether or not a render is asked for: the pose is looked up either way.
+  if (o.render_frame >= int(std::max<std::size_t>(1, scan.trajectory.size())))
+    throw SettingError("render frame", "is " + std::to_string(o.render_frame) + ", but the scan has " +
+                                           std::to_string(scan.trajectory.size()) + " poses (frames 0 to " +
+                                           std::to_string(std::max<std::size_t>(1, scan.trajectory.size()) - 1) + ")");
   // 1. Clean-up, world frame, crop, simplification.
   tick("clean-up", 0.0);
   mesh::CleanOptions co = o.clean_options;

@@ -6,21 +6,26 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numeric>
 #include <optional>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "radiometry/calibration_detail.h"
 
 namespace hdrf::radiometry {
 
 using namespace detail;
 
+namespace {
+constexpr std::uintmax_t kMaxBasisBytes = 4 * kMiB;
+}  // namespace
+
 EmorBasis EmorBasis::Load(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, std::filesystem::exists(file) ? "cannot be opened" : "file is missing");
+  // Read through the input-file checks: a FIFO or /dev/zero named as the basis is refused,
+  // not waited on or read without end (the distribution's invemor.txt is 440 KB).
+  std::istringstream in(ReadInputFile(file, kMaxBasisBytes, "an EMoR basis file (invemor.txt)"));
   EmorBasis b;
   std::vector<std::vector<double>> blocks;
   std::string line;

@@ -137,6 +137,24 @@ TEST(Cli, SimulateWritesASequenceThatInfoAndTheReaderAccept) {
   EXPECT_EQ(cv::imread((dir / "sheet.png").string()).cols, 3 * 64 + 8);
 }
 
+// A scan whose --out is the sequence it reads rewrote the sequence's sensor.json with the
+// curve it had assumed (--response srgb), so that later scans used the guess as calibrated.
+TEST(Cli, AScanNeverWritesIntoTheRecordingItReads) {
+  test::TempDir dir;
+  const std::string seq = (dir / "seq").string();
+  ASSERT_EQ(RunCli("simulate --out " + seq + " --frames 6 --size 64x48 --seed 3").status, 0);
+  const std::string sensor = test::ReadText(dir / "seq" / "sensor.json");
+  for (const std::string out : {seq, seq + "/", (dir / "seq" / ".").string()}) {
+    const RunResult r = RunCli("scan " + seq + " --out " + out + " --response srgb");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("is the recording the scan reads"), std::string::npos) << r.output;
+  }
+  const RunResult r = RunCli("scan " + seq + " --out " + (dir / "scan").string() + " --save " + seq + "/sensor.json");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(test::ReadText(dir / "seq" / "sensor.json"), sensor);
+  EXPECT_FALSE(std::filesystem::exists(dir / "seq" / "trajectory.txt"));
+}
+
 TEST(Cli, SimulateSweepAndBadSettings) {
   test::TempDir dir;
   RunResult r = RunCli("simulate --out " + (dir / "sweep").string() +
@@ -584,7 +602,17 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --tone mantiuk08,peak=1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;
+  // A frame the scan does not have, with or without a render (without one it crashed after
+  // the whole export, leaving its staging folder): refused before any work, naming the range.
+  for (const std::string frame : {"100000000", "30"})
+    for (const std::string render : {"", " --render 64x48"}) {
+      r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --render-frame " + frame + render);
+      EXPECT_EQ(r.status, 1) << frame << render << ": " << r.output;
+      EXPECT_NE(r.output.find("30 poses (frames 0 to 29)"), std::string::npos) << r.output;
+    }
   EXPECT_FALSE(std::filesystem::exists(dir / "x"));
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "last").string() + " --render-frame 29");
+  EXPECT_EQ(r.status, 0) << r.output;
 }
 
 // The textured export end to end, read back by a third-party reader (assimp, where

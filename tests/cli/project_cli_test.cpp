@@ -125,10 +125,10 @@ TEST_F(ProjectCli, BudgetReachedIsSaidAndTheModelIsKeptAndExports) {
   EXPECT_GT(rep_far["frames_detail"][0]["depth_beyond_far"].get<double>(), 0.5);
 }
 
-pid_t Spawn(const std::string& command) {
+pid_t Spawn(const std::string& command, const std::string& log = "/dev/null") {
   const pid_t pid = fork();
   if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", ("exec " + command + " >/dev/null 2>&1").c_str(), static_cast<char*>(nullptr));
+    execl("/bin/sh", "sh", "-c", ("exec " + command + " >" + log + " 2>&1").c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   return pid;
@@ -275,6 +275,32 @@ TEST_F(ProjectCli, AFailedOrCancelledScanChangesNoOutputAndKeepsTheModel) {
   kept = io::FindRecoveryFiles();
   ASSERT_EQ(kept.size(), 1u);
   EXPECT_GT(io::LoadProject(kept[0]).resume.frames, 0);
+  fs::remove(kept[0]);
+  // 5. SIGTERM while the mesh is extracted (the process ended at once: no message, no
+  // recovery file, the finished scan lost and its staged outputs left behind): the writing
+  // stops, nothing in the output folder changes, the model is kept.
+  const fs::path log = dir / "term.log";
+  const pid_t term = Spawn(std::string(HDRF_CLI) + " scan synthetic:frames=30,size=160x120 --volume.voxel_m 0.003 --out " +
+                               out.string(),
+                           log.string());
+  const auto t1 = std::chrono::steady_clock::now();
+  while (test::ReadText(log).find("extracting the mesh") == std::string::npos &&
+         std::chrono::steady_clock::now() - t1 < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(term, SIGTERM);
+  waitpid(term, &status, 0);
+  const std::string said = test::ReadText(log);
+  ASSERT_TRUE(WIFEXITED(status)) << said;
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << said;
+  EXPECT_NE(said.find("cancelled by SIGTERM while writing the outputs: nothing in " + out.string() + " was changed; "
+                      "the 30 frames scanned are kept in"),
+            std::string::npos)
+      << said;
+  EXPECT_EQ(Snapshot(out), without_mesh);
+  EXPECT_TRUE(test::StagingFiles(out).empty());
+  kept = io::FindRecoveryFiles();
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(io::LoadProject(kept[0]).resume.frames, 30);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (the built-in Xtion profile always; DoRF, EMoR and BorealHDR curves from ../shared/data
 // where present), then the real Memorial sweep (tests/io).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <array>
 #include <cmath>
@@ -344,6 +345,13 @@ TEST(Calibration, EmorBasisFileErrorsNamed) {
   test::WriteText(dir / "bad.txt", "B = \n0 1 2\n");
   test::ExpectErrorContaining([&] { EmorBasis::Load(dir / "bad.txt"); }, {"bad.txt", "expected B, g0"});
   test::ExpectErrorContaining([&] { EmorBasis::Load(dir / "none.txt"); }, {"none.txt", "missing"});
+  // Named where a file is expected: /dev/zero grew past 4 GB and a FIFO hung the reader; both
+  // are refused at once, as every input file is.
+  test::ExpectErrorContaining([&] { EmorBasis::Load("/dev/zero"); }, {"/dev/zero", "not a regular file"});
+  ASSERT_EQ(::mkfifo((dir / "pipe.txt").c_str(), 0644), 0);
+  test::ExpectErrorContaining([&] { EmorBasis::Load(dir / "pipe.txt"); }, {"pipe.txt", "not a regular file"});
+  test::WriteText(dir / "big.txt", std::string(5 << 20, '1'));
+  test::ExpectErrorContaining([&] { EmorBasis::Load(dir / "big.txt"); }, {"big.txt", "more than the"});
 }
 
 }  // namespace
