@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/interrupt.h"
 #include "io/asset_export.h"
+#include "io/output_file.h"
 #include "common/error.h"
 
 namespace hdrf::cli {
@@ -99,6 +100,11 @@ Command AddExportCommand(CLI::App& app) {
       o.render_width = w, o.render_height = h;
     }
     o.Check();
+    // The export replaces mesh.ply: into the scan's own folder it took the raw mesh, and the
+    // next export of that folder baked its texture from the levelled one.
+    if (io::IsWithin(a->out, a->in))
+      throw InputError(a->out, "is the scan being exported: the export's mesh.ply would replace the scan's own; "
+                               "choose another --out");
     const io::ScanData scan = io::LoadScan(a->in);
     StopOnInterrupt stop;  // Ctrl-C cancels: the output folder is left as it was
     std::string last_stage;

@@ -170,6 +170,7 @@ Command AddScanCommand(CLI::App& app) {
       job = std::make_unique<jobs::ScanJob>(o, source->sensor(), save.stem().string(), a->autosave_s);
       job->SetSource(source->description(), a->source);
     }
+    if (!job->notice().empty()) std::fprintf(stderr, "scan: %s\n", job->notice().c_str());
     pipeline::ScanSession& session = job->session();
     pipeline::Pipeline& pipe = session.pipeline();
     if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());

@@ -1,5 +1,6 @@
 #include "io/output_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <ext/stdio_filebuf.h>
@@ -38,6 +39,17 @@ void RemoveQuietly(const fs::path& p) {
 }
 
 }  // namespace
+
+bool IsWithin(const fs::path& path, const fs::path& input) {
+  std::error_code ec;
+  if (input.empty() || !fs::exists(input, ec)) return false;
+  const fs::path in = fs::weakly_canonical(input, ec);
+  if (ec) return false;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  const auto [i, q] = std::mismatch(in.begin(), in.end(), p.begin(), p.end());
+  return i == in.end() || (std::next(i) == in.end() && i->empty());
+}
 
 void CheckReplaceable(const fs::path& file) {
   struct stat st {};

@@ -77,4 +77,9 @@ bool IsStagingFile(const std::filesystem::path& p);
 // rename or written through): outputs are only ever regular files.
 void CheckReplaceable(const std::filesystem::path& file);
 
+// Whether `path` is `input` or lies inside it, however either is written (links and ".."
+// resolved): an output there would replace what the command reads. False where `input`
+// does not exist.
+bool IsWithin(const std::filesystem::path& path, const std::filesystem::path& input);
+
 }  // namespace hdrf::io

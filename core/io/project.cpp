@@ -554,4 +554,31 @@ std::vector<fs::path> FindRecoveryFiles() {
   return out;
 }
 
+RecoveryPrune PruneRecoveryFiles(const RecoveryLimits& limits, const fs::path& in_use) {
+  RecoveryPrune done;
+  const auto now = fs::file_time_type::clock::now();
+  std::size_t kept = 0;
+  std::uintmax_t kept_bytes = 0;
+  for (const fs::path& f : FindRecoveryFiles()) {  // newest first
+    std::error_code ec;
+    if (!in_use.empty() && fs::equivalent(f, in_use, ec)) continue;
+    const std::uintmax_t bytes = fs::file_size(f, ec);
+    if (ec) continue;
+    const auto age = now - fs::last_write_time(f, ec);
+    if (ec) continue;
+    const bool old = age > std::chrono::hours(24) * limits.max_age_days;
+    // The newest is kept whatever its size: it is the scan that failed last.
+    if (!old && kept < limits.max_files && (kept == 0 || kept_bytes + bytes <= limits.max_bytes)) {
+      ++kept;
+      kept_bytes += bytes;
+      continue;
+    }
+    if (fs::remove(f, ec)) {
+      ++done.removed;
+      done.bytes += bytes;
+    }
+  }
+  return done;
+}
+
 }  // namespace hdrf::io

@@ -78,6 +78,19 @@ std::filesystem::path RecoveryFolder();
 // A fresh recovery file for a scan starting now: STEM-YYYYmmdd-HHMMSS-PID.hdrproj.
 std::filesystem::path NewRecoveryFile(const std::string& stem);
 std::vector<std::filesystem::path> FindRecoveryFiles();
+// Recovery files are kept for a while, not for ever (every failed scan leaves one): the
+// newest are kept up to these limits (the newest whatever its size), older ones and those
+// beyond them are removed; `in_use` (a recovery file being resumed) never is.
+struct RecoveryLimits {
+  int max_age_days = 30;
+  std::size_t max_files = 20;
+  std::uintmax_t max_bytes = std::uintmax_t(4) << 30;  // 4 GiB
+};
+struct RecoveryPrune {
+  int removed = 0;
+  std::uintmax_t bytes = 0;
+};
+RecoveryPrune PruneRecoveryFiles(const RecoveryLimits& limits = {}, const std::filesystem::path& in_use = {});
 
 // The per-frame report as stored in report.json and project files, and back.
 nlohmann::json FrameReportToJson(const pipeline::FrameReport& r);

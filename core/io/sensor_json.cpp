@@ -39,6 +39,8 @@ double Positive(const std::filesystem::path& file, const json& v, const std::str
 
 // JSON has no NaN; nlohmann reads a literal NaN as a syntax error and null where a number
 // belongs means a writer put NaN there, so both are reported as "not a finite number".
+constexpr double kMaxNoiseSigma = 100;
+
 std::array<float, 3> Triple(const std::filesystem::path& file, const json& v,
                             const std::string& key) {
   if (!v.is_array() || v.size() != 3)
@@ -46,7 +48,11 @@ std::array<float, 3> Triple(const std::filesystem::path& file, const json& v,
   std::array<float, 3> out{};
   for (int c = 0; c < 3; ++c) {
     const double d = Number(file, v[c], key + "[" + std::to_string(c) + "]");
-    if (d < 0) throw InputError(file, "'" + key + "' must not be negative");
+    // In the response's units (mid-grey radiance 1): a noise of 100 is no camera's, and 1e300
+    // became infinite as a float and failed the scan only when it was saved.
+    if (!(d >= 0 && d <= kMaxNoiseSigma))
+      throw InputError(file, "'" + key + "' must be 0 to " + std::to_string(int(kMaxNoiseSigma)) +
+                                 " (in the response's units, mid-grey radiance 1), got " + v[c].dump());
     out[c] = float(d);
   }
   return out;

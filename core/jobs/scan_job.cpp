@@ -93,7 +93,9 @@ ScanJob::ScanJob(const pipeline::PipelineOptions& options, const SensorInfo& sen
     : session_(std::make_unique<pipeline::ScanSession>(options, sensor.camera, sensor)),
       recovery_(io::NewRecoveryFile(name)),
       autosave_s_(autosave_s),
-      autosave_time_(std::chrono::steady_clock::now()) {}
+      autosave_time_(std::chrono::steady_clock::now()) {
+  Prune({});
+}
 
 ScanJob::ScanJob(const io::Project& project, const std::function<void(pipeline::PipelineOptions&)>& adjust,
                  const std::string& name, double autosave_s)
@@ -105,7 +107,21 @@ ScanJob::ScanJob(const io::Project& project, const std::function<void(pipeline::
       saved_by_user_(session_->frames()),
       source_(project.source),
       spec_(project.source_spec),
-      continued_frames_(project.resume.frames) {}
+      continued_frames_(project.resume.frames) {
+  Prune(project.file);
+}
+
+void ScanJob::Prune(const fs::path& in_use) {
+  const io::RecoveryLimits limits;
+  const io::RecoveryPrune p = io::PruneRecoveryFiles(limits, in_use);
+  if (p.removed == 0) return;
+  char mib[32];
+  std::snprintf(mib, sizeof mib, "%.1f", double(p.bytes) / (1 << 20));
+  notice_ = "removed " + std::to_string(p.removed) + " recovery file" + (p.removed == 1 ? "" : "s") +
+            " of earlier unfinished scans from " + io::RecoveryFolder().string() + " (" + mib + " MiB): older than " +
+            std::to_string(limits.max_age_days) + " days, or beyond the newest " + std::to_string(limits.max_files) +
+            " and " + std::to_string(limits.max_bytes >> 30) + " GiB";
+}
 
 void ScanJob::SetSource(const std::string& description, const std::string& spec) {
   source_ = description;
@@ -168,21 +184,10 @@ void ScanJob::DropRecovery() {
 }
 
 void ScanJob::CheckOutputs(const fs::path& out, const fs::path& project, const std::string& source_spec) {
-  // A path within the recording (a folder, or a file such as FILE.oni), however written.
-  std::error_code ec;
-  const fs::path source = source_spec.empty() ? fs::path() : fs::weakly_canonical(source_spec, ec);
-  const auto within = [&](const fs::path& p) {
-    if (source.empty() || ec || !fs::exists(source)) return false;
-    std::error_code pec;
-    const fs::path c = fs::weakly_canonical(p, pec);
-    if (pec) return false;
-    auto [s, q] = std::mismatch(source.begin(), source.end(), c.begin(), c.end());
-    return s == source.end() || (std::next(s) == source.end() && s->empty());
-  };
-  if (within(out))
+  if (io::IsWithin(out, source_spec))
     throw InputError(out, "is the recording the scan reads: its outputs (sensor.json, trajectory.txt, ...) would "
                           "replace the recording's own files; choose another --out");
-  if (within(project))
+  if (io::IsWithin(project, source_spec))
     throw InputError(project, "is in the recording the scan reads; choose another project file");
   io::CheckReplaceable(project);
   for (const char* f : {"trajectory.txt", "mesh.ply", "report.json", "keyframes.json", "sensor.json", "render_first.exr",

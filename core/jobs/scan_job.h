@@ -91,6 +91,10 @@ class ScanJob {
                              const std::function<void(const std::string&)>& say = {},
                              const std::function<bool()>& cancelled = {});
 
+  // What the job did on its own that the user should hear of (recovery files of old scans
+  // removed to keep their folder bounded, io::PruneRecoveryFiles); empty if nothing.
+  const std::string& notice() const { return notice_; }
+
   pipeline::ScanSession& session() { return *session_; }
   const pipeline::ScanSession& session() const { return *session_; }
   const std::filesystem::path& recovery_file() const { return recovery_; }
@@ -104,6 +108,8 @@ class ScanJob {
   int saved_frames_ = 0;    // frames in the last save or autosave
   int saved_by_user_ = 0;   // frames in the last save the user asked for (or the project opened)
   std::string source_, spec_;
+  std::string notice_;
+  void Prune(const std::filesystem::path& in_use);
   int continued_frames_ = 0;
   bool same_source_ = false;
 };

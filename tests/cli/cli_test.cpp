@@ -613,6 +613,14 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x"));
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "last").string() + " --render-frame 29");
   EXPECT_EQ(r.status, 0) << r.output;
+  // Into the scan's own folder (it replaced the raw mesh the next export bakes from): refused.
+  const std::string raw = test::ReadText(dir / "scan" / "mesh.ply");
+  for (const std::string out : {(dir / "scan").string(), (dir / "scan" / ".").string(), (dir / "scan" / "e").string()}) {
+    r = RunCli("export " + (dir / "scan").string() + " --out " + out);
+    EXPECT_EQ(r.status, 1) << out << ": " << r.output;
+    EXPECT_NE(r.output.find("is the scan being exported"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(test::ReadText(dir / "scan" / "mesh.ply"), raw);
 }
 
 // The textured export end to end, read back by a third-party reader (assimp, where

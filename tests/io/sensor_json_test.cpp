@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "io/sensor_json.h"
 #include "common/error.h"
 #include "support/test_support.h"
@@ -183,6 +185,23 @@ TEST(SensorJson, NonMonotonicResponseRejected) {
   WriteText(dir / "sensor.json", WithResponse(Ramp(256, 200, "0.5")));
   ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); },
                         {"sensor.json", "channel r", "monotonic", "level 200"});
+}
+
+// A noise level out of any camera's range (1e300 became infinite as a float: the scan ran and
+// failed only when it was saved) is refused when the file is read, naming the key.
+TEST(SensorJson, NoiseOutOfRangeRefusedNamingTheKey) {
+  TempDir dir;
+  const std::string camera = R"({"camera": {"width": 4, "height": 2, "fx": 5, "fy": 5, "cx": 1.5, "cy": 0.5},
+                                 "depth": {"scale": 1000}, "noise": )";
+  for (const auto& [noise, key, value] :
+       {std::tuple{R"({"sigma_s": [1e300, 0.03, 0.03], "sigma_c": [0.001, 0.001, 0.001]})", "noise.sigma_s", "1e+300"},
+        std::tuple{R"({"sigma_s": [0.03, 0.03, 0.03], "sigma_c": [0.001, 101, 0.001]})", "noise.sigma_c", "101"},
+        std::tuple{R"({"sigma_s": [0.03, -0.5, 0.03], "sigma_c": [0.001, 0.001, 0.001]})", "noise.sigma_s", "-0.5"}}) {
+    WriteText(dir / "sensor.json", camera + noise + "}");
+    ExpectErrorContaining([&] { ReadSensorJson(dir / "sensor.json"); }, {"sensor.json", key, "must be 0 to 100", value});
+  }
+  WriteText(dir / "sensor.json", camera + R"({"sigma_s": [100, 0, 0.03], "sigma_c": [0.001, 0.001, 0.001]})" + "}");
+  EXPECT_EQ(ReadSensorJson(dir / "sensor.json").noise->sigma_s[0], 100.f);
 }
 
 TEST(SensorJson, ResponseWithNaNOrWrongLengthRejected) {

@@ -2,6 +2,7 @@
 // recovery file, its project, a continued scan's source, and the output set.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +161,41 @@ TEST(ScanJob, OutputsAreOneSetAndAFailureKeepsTheModelInTheRecoveryFile) {
   EXPECT_THROW(jobs::ScanJob::CheckOutputs(s.dir / "out" / "." , s.dir / "p.hdrproj", out.string()), InputError);
   EXPECT_THROW(jobs::ScanJob::CheckOutputs(s.dir / "x", out / "scan.hdrproj", (out / "scan.hdrproj").string()),
                InputError);
+}
+
+// Every failed scan leaves a recovery file: a new job removes those older than 30 days and
+// those beyond the newest 20, and says so; a recovery file being resumed stays.
+TEST(ScanJob, RecoveryFilesOfOldScansArePrunedWithANotice) {
+  Scratch s;
+  auto src = io::OpenSource(kSpec, "");
+  jobs::ScanJob first(pipeline::PipelineOptions{}, src->sensor(), "first", 0);
+  Scan(first, *src, 3);
+  ASSERT_EQ(first.Autosave(true), "");
+  EXPECT_EQ(first.notice(), "");
+  const fs::path folder = first.recovery_file().parent_path();
+  const auto now = fs::file_time_type::clock::now();
+  // The autosave 40 days old (it is resumed below), 3 other files as old, 22 of the last days.
+  fs::last_write_time(first.recovery_file(), now - std::chrono::hours(24 * 40));
+  for (int i = 0; i < 25; ++i) {
+    const fs::path f = folder / ("scan-" + std::to_string(i) + ".hdrproj");
+    std::ofstream(f) << std::string(1000, 'x');
+    fs::last_write_time(f, now - std::chrono::hours(i < 22 ? i + 1 : 24 * 31 + i));
+  }
+  const io::Project resumed = io::LoadProject(first.recovery_file());
+  jobs::ScanJob next(resumed, nullptr, "next", 0);
+  EXPECT_TRUE(fs::exists(first.recovery_file())) << "the file being resumed was removed";
+  // Kept: the newest 20 of the 22 recent ones; removed: their 2 oldest and the 3 old ones.
+  for (int i = 0; i < 25; ++i)
+    EXPECT_EQ(fs::exists(folder / ("scan-" + std::to_string(i) + ".hdrproj")), i < 20) << i;
+  EXPECT_NE(next.notice().find("removed 5 recovery files of earlier unfinished scans from " + folder.string()),
+            std::string::npos)
+      << next.notice();
+  // No longer resumed, the old autosave goes too; then there is nothing to say.
+  jobs::ScanJob third(pipeline::PipelineOptions{}, src->sensor(), "third", 0);
+  EXPECT_NE(third.notice().find("removed 1 recovery file of"), std::string::npos) << third.notice();
+  EXPECT_FALSE(fs::exists(first.recovery_file()));
+  jobs::ScanJob fourth(pipeline::PipelineOptions{}, src->sensor(), "fourth", 0);
+  EXPECT_EQ(fourth.notice(), "");
 }
 
 }  // namespace
