@@ -193,8 +193,8 @@ TEST(TrackPrior, HoldsTheLooseDirectionAndLeavesTheConstrainedOnes) {
 
 // The weak-direction floor: a view whose weakest direction (x, a wall slid along) the data
 // still fix a hundred times better than the prior, but ten thousand times worse than their
-// strongest, and biased by 5 cm (as on the hall and the flicker room before session 23,
-// where poses slid 1-17 cm a frame with the point-to-surface error at its usual). The prior
+// strongest, and biased by 5 cm (as on the hall and the flicker room without the floor,
+// where poses slide 1-17 cm a frame with the point-to-surface error at its usual). The prior
 // alone cannot hold such a direction; with the floor the prediction holds it, and the
 // strongly fixed directions still go where the data put them.
 TEST(TrackPrior, WeakDirectionOfAStrongViewIsHeldToThePrediction) {
