@@ -291,5 +291,6 @@ static const char* const kEngineWords[] = {
     QT_TRANSLATE_NOOP("Engine", "%1: the 'synthetic' block is not this project's (it holds other keys); ignored"),
     QT_TRANSLATE_NOOP("Engine", "%1: the 'synthetic' block is not this project's (it holds no object); ignored"),
     QT_TRANSLATE_NOOP("Engine", "%1 has no 'response' calibration: the sRGB curve is assumed, so the HDR radiance is only as good as that guess"),
+    QT_TRANSLATE_NOOP("Engine", "removed %1 recovery files of earlier unfinished scans (%2 MiB) from %3: older than %4 days, or beyond the newest %5 and %6 GiB"),
     QT_TRANSLATE_NOOP("Engine", "the scan has no keyframes: the texture holds the volume's radiance only (as sharp as the voxels)"),
 };

@@ -190,6 +190,7 @@ void ScanWorker::OpenProject(const QString& path) {
     settings_.pipeline = job_->session().pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
     QString msg = tr("Opened %1: %2 frames").arg(path).arg(job_->session().frames());
+    if (!job_->notice().empty()) msg += " — " + wizard::EngineText(job_->notice());
     const QString src = QString::fromStdString(p.source);
     try {
       if (p.source_spec.empty()) throw Error("the project does not say how its source was opened");
@@ -291,6 +292,7 @@ void ScanWorker::Configure(const ScanSettings& s) {
     if (!pipe.device_note().empty()) msg += " — " + wizard::EngineText(pipe.device_note());
     if (!pipe.settings_note().empty()) msg += " — " + wizard::EngineText(pipe.settings_note());
     for (const std::string& w : source_->sensor().warnings) msg += " — " + wizard::EngineText(w);
+    if (!job_->notice().empty()) msg += " — " + wizard::EngineText(job_->notice());
     emit stateChanged(false, msg);
     if (live_) {
       ListSensors();

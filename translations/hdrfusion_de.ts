@@ -223,6 +223,10 @@
         <source>CUDA requested but not usable (%1); running on the CPU</source>
         <translation>CUDA verlangt, aber nicht nutzbar (%1); läuft auf der CPU</translation>
     </message>
+    <message>
+        <source>removed %1 recovery files of earlier unfinished scans (%2 MiB) from %3: older than %4 days, or beyond the newest %5 and %6 GiB</source>
+        <translation>%1 Wiederherstellungsdateien früherer unvollendeter Scans (%2 MiB) aus %3 entfernt: älter als %4 Tage oder jenseits der neuesten %5 und %6 GiB</translation>
+    </message>
 </context>
 <context>
     <name>QObject</name>

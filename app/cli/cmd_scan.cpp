@@ -128,6 +128,10 @@ Command AddScanCommand(CLI::App& app) {
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());
     for (const std::string& w : source->sensor().warnings) std::fprintf(stderr, "scan: warning: %s\n", Printable(w).c_str());
     const fs::path save = a->save.empty() ? out / "scan.hdrproj" : fs::path(a->save);
+    // (p.txt was taken and written as a project that nothing would offer to open)
+    if (save.extension() != io::kProjectExtension)
+      throw SettingError("--save", "a project file's name ends in " + std::string(io::kProjectExtension) + ", got '" +
+                                       a->save + "'");
     // An output that may not be replaced (a link, a device, a folder) is refused before the scan.
     jobs::ScanJob::CheckOutputs(out, save, a->source);
     // Unfinished scans a crash left behind are offered, newest first.

@@ -113,6 +113,9 @@ struct Wording {
   X(kForeignSyntheticValue, "%1: the 'synthetic' block is not this project's (it holds no object); ignored")         \
   X(kSrgbAssumed, "%1 has no 'response' calibration: the sRGB curve is assumed, so the HDR radiance is only as "     \
                   "good as that guess")                                                                              \
+  /* Scan jobs. */                                                                                                    \
+  X(kRecoveryPruned, "removed %1 recovery files of earlier unfinished scans (%2 MiB) from %3: older than %4 days, or " \
+                     "beyond the newest %5 and %6 GiB")                                                               \
   /* Asset export. */                                                                                                \
   X(kNoKeyframes, "the scan has no keyframes: the texture holds the volume's radiance only (as sharp as the voxels)")
 // clang-format on

@@ -7,8 +7,8 @@
 #include "common/error.h"
 #include "io/image_io.h"
 #include "io/json_file.h"
-#include "io/sensor_json.h"
 #include "io/output_file.h"
+#include "io/sensor_json.h"
 
 namespace hdrf::io {
 
@@ -19,6 +19,7 @@ bool HasKeyframes(const fs::path& dir) { return fs::exists(dir / "keyframes.json
 
 void WriteKeyframes(const fs::path& dir, const std::vector<pipeline::Keyframe>& keyframes, const SensorInfo& sensor,
                     int pcf_power) {
+  CheckOutputFolder(dir / "keyframes");
   fs::create_directories(dir / "keyframes");
   json list = json::array();
   for (const pipeline::Keyframe& k : keyframes) {

@@ -21,6 +21,8 @@ thread_local OutputSet* g_current_set = nullptr;
 
 constexpr char kSuffix[] = ".partial";
 constexpr std::size_t kRandomChars = 12;  // 6 bits each
+constexpr std::size_t kMaxNameBytes = 255;  // NAME_MAX of Linux file systems
+constexpr std::size_t kStagingBytes = 2 + kRandomChars + (sizeof kSuffix - 1);  // "." name "." random suffix
 
 std::string RandomChars() {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-";
@@ -39,6 +41,14 @@ void RemoveQuietly(const fs::path& p) {
 }
 
 }  // namespace
+
+void CheckOutputFolder(const fs::path& folder) {
+  struct stat st {};
+  if (::lstat(folder.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return;
+  if (S_ISLNK(st.st_mode))
+    throw InputError(folder, "is a symbolic link: output files are never written through links (remove it)");
+  throw InputError(folder, "is not a folder: the outputs that go in it cannot be written (remove it)");
+}
 
 bool IsWithin(const fs::path& path, const fs::path& input) {
   std::error_code ec;
@@ -81,7 +91,9 @@ OutputFile::OutputFile(fs::path target) : target_(std::move(target)) {
   const fs::path folder = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
   for (int attempt = 0; attempt < 64; ++attempt) {
     std::string hidden = ".";  // (appended piece by piece: GCC 12 warns falsely on "." + string&&)
-    hidden += target_.filename().string();
+    // A name near the file system's limit (255 bytes) is shortened here: the staging name adds
+    // 22 bytes, and a 234-byte name was refused at the end of the work.
+    hidden += target_.filename().string().substr(0, kMaxNameBytes - kStagingBytes);
     hidden += '.';
     hidden += RandomChars();
     hidden += kSuffix;

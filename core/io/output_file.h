@@ -77,6 +77,11 @@ bool IsStagingFile(const std::filesystem::path& p);
 // rename or written through): outputs are only ever regular files.
 void CheckReplaceable(const std::filesystem::path& file);
 
+// Throws InputError if `folder`, a folder the programs make for their outputs (a scan's
+// keyframes/), exists as anything but a real folder: files written into a link would land
+// in (and replace files of) whatever it points to.
+void CheckOutputFolder(const std::filesystem::path& folder);
+
 // Whether `path` is `input` or lies inside it, however either is written (links and ".."
 // resolved): an output there would replace what the command reads. False where `input`
 // does not exist.

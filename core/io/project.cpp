@@ -538,8 +538,15 @@ fs::path NewRecoveryFile(const std::string& stem) {
   std::tm tm{};
   gmtime_r(&now, &tm);
   std::strftime(stamp, sizeof stamp, "-%Y%m%d-%H%M%S-", &tm);
-  return RecoveryFolder() / ((stem.empty() ? std::string("scan") : stem) + stamp + std::to_string(getpid()) +
-                             kProjectExtension);
+  // The stem shortened to 100 bytes (not within a UTF-8 character): a project's own name may
+  // be near the 255-byte limit, and the recovery file must still be written.
+  std::string s = stem.empty() ? std::string("scan") : stem;
+  if (s.size() > 100) {
+    std::size_t n = 100;
+    while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
+    s.resize(n);
+  }
+  return RecoveryFolder() / (s + stamp + std::to_string(getpid()) + kProjectExtension);
 }
 
 std::vector<fs::path> FindRecoveryFiles() {

@@ -1,6 +1,8 @@
 #include "io/source_spec.h"
 
+#include <charconv>
 #include <cstdio>
+#include <stdexcept>
 #include <sstream>
 
 #include "common/error.h"
@@ -9,9 +11,21 @@
 namespace hdrf::io {
 
 void ParseSize(const std::string& s, int* w, int* h) {
-  if (std::sscanf(s.c_str(), "%dx%d", w, h) != 2)
+  char extra = 0;  // (320x240junk was taken as 320x240)
+  if (std::sscanf(s.c_str(), "%dx%d%c", w, h, &extra) != 2 || *w <= 0 || *h <= 0)
     throw SettingError("--size", "expected WIDTHxHEIGHT such as 320x240, got '" + s + "'");
 }
+
+namespace {
+// The whole of `v` as a number of type T: "12abc", "-1" for an unsigned seed, "" refused.
+template <typename T>
+T Whole(const std::string& v) {
+  T x{};
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+  if (ec != std::errc() || end != v.data() + v.size() || v.empty()) throw std::invalid_argument(v);
+  return x;
+}
+}  // namespace
 
 std::vector<std::pair<std::string, std::string>> SplitSpec(const std::string& spec, std::size_t from,
                                                            const std::string& example) {
@@ -39,10 +53,10 @@ std::unique_ptr<pipeline::FrameSource> OpenSource(const std::string& spec, const
     for (const auto& [k, v] : SplitSpec(spec, prefix.size(), "synthetic:size=320x240,frames=300")) {
       try {
         if (k == "scene") o.scene = v;
-        else if (k == "seed") o.seed = std::uint32_t(std::stoul(v));
-        else if (k == "frames") o.frames = std::stoi(v);
+        else if (k == "seed") o.seed = Whole<std::uint32_t>(v);
+        else if (k == "frames") o.frames = Whole<int>(v);
         else if (k == "ae") o.ae.mode = sim::ParseAeMode(v);
-        else if (k == "exposure") o.ae.fixed_ms = std::stod(v);
+        else if (k == "exposure") o.ae.fixed_ms = Whole<double>(v);
         else if (k == "size") ParseSize(v, &o.width, &o.height);
         else throw SettingError("SOURCE", "unknown synthetic setting '" + k +
                                               "' (scene, seed, frames, ae, exposure, size)");

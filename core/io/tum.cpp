@@ -12,6 +12,8 @@ namespace hdrf::io {
 
 namespace {
 
+constexpr double kMaxPositionM = 1e9;
+
 void CheckIncreasing(const std::filesystem::path& file, const TextRow& row, double previous,
                      double t, bool first) {
   if (!first && !(t > previous)) {
@@ -62,6 +64,12 @@ std::vector<TimedPose> ReadTrajectory(const std::filesystem::path& file) {
     double v[8];
     static const char* names[8] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
     for (int i = 0; i < 8; ++i) v[i] = ParseNumber(file, row, i, names[i]);
+    // A position beyond a million kilometres is no camera's (1e300 made every error infinite,
+    // and `eval` reported an ATE of inf).
+    for (int i = 1; i <= 3; ++i)
+      if (!(std::fabs(v[i]) <= kMaxPositionM))
+        throw InputError(file, row.line, std::string(names[i]) + " is " + row.fields[std::size_t(i)] +
+                                             ": a camera position is at most 1e9 m from the origin");
     CheckIncreasing(file, row, out.empty() ? 0 : out.back().timestamp, v[0], out.empty());
     try {
       out.push_back({v[0], se3::FromTranslationQuaternion(Vec3(v[1], v[2], v[3]), v[4], v[5],

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/message.h"
 #include "io/exr.h"
 #include "io/image_io.h"
 #include "io/keyframes_io.h"
@@ -115,12 +116,10 @@ void ScanJob::Prune(const fs::path& in_use) {
   const io::RecoveryLimits limits;
   const io::RecoveryPrune p = io::PruneRecoveryFiles(limits, in_use);
   if (p.removed == 0) return;
-  char mib[32];
-  std::snprintf(mib, sizeof mib, "%.1f", double(p.bytes) / (1 << 20));
-  notice_ = "removed " + std::to_string(p.removed) + " recovery file" + (p.removed == 1 ? "" : "s") +
-            " of earlier unfinished scans from " + io::RecoveryFolder().string() + " (" + mib + " MiB): older than " +
-            std::to_string(limits.max_age_days) + " days, or beyond the newest " + std::to_string(limits.max_files) +
-            " and " + std::to_string(limits.max_bytes >> 30) + " GiB";
+  notice_ = Say(words::kRecoveryPruned,
+                {std::to_string(p.removed), Num(double(p.bytes) / (1 << 20), 1), io::RecoveryFolder().string(),
+                 std::to_string(limits.max_age_days), std::to_string(limits.max_files),
+                 std::to_string(limits.max_bytes >> 30)});
 }
 
 void ScanJob::SetSource(const std::string& description, const std::string& spec) {
@@ -190,6 +189,7 @@ void ScanJob::CheckOutputs(const fs::path& out, const fs::path& project, const s
   if (io::IsWithin(project, source_spec))
     throw InputError(project, "is in the recording the scan reads; choose another project file");
   io::CheckReplaceable(project);
+  io::CheckOutputFolder(out / "keyframes");
   for (const char* f : {"trajectory.txt", "mesh.ply", "report.json", "keyframes.json", "sensor.json", "render_first.exr",
                         "render_first.png", "render_first_normals.png", "render_last.exr", "render_last.png",
                         "render_last_normals.png"})

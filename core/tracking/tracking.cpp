@@ -42,6 +42,11 @@ void TrackerOptions::Check() const {
   if (levels < 1 || levels > 4) throw SettingError("tracker.levels", "must be 1 to 4");
   for (int i = 0; i < levels; ++i)
     if (iterations[std::size_t(i)] < 0) throw SettingError("tracker.iterations", "must be >= 0");
+  // Coarse levels may be skipped; the finest may not: with no iteration there every pose is
+  // the motion prediction, never measured against the frame.
+  if (iterations[std::size_t(levels - 1)] < 1)
+    throw SettingError("tracker.iterations", "the finest level (the last of " + std::to_string(levels) +
+                                                 ") needs at least 1 iteration, or no pose is measured");
   if (!(icp_sigma_m > 0)) throw SettingError("tracker.icp_sigma_m", "must be > 0");
   if (!(photo_sigma > 0)) throw SettingError("tracker.photo_sigma", "must be > 0");
   if (!(huber_k > 0)) throw SettingError("tracker.huber_k", "must be > 0");

@@ -7,9 +7,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -149,8 +151,13 @@ TEST(Cli, AScanNeverWritesIntoTheRecordingItReads) {
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_NE(r.output.find("is the recording the scan reads"), std::string::npos) << r.output;
   }
-  const RunResult r = RunCli("scan " + seq + " --out " + (dir / "scan").string() + " --save " + seq + "/sensor.json");
+  RunResult r = RunCli("scan " + seq + " --out " + (dir / "scan").string() + " --save " + seq + "/x.hdrproj");
   EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("is in the recording the scan reads"), std::string::npos) << r.output;
+  // A project is a .hdrproj file (sensor.json, p.txt were taken and written as projects).
+  r = RunCli("scan " + seq + " --out " + (dir / "scan").string() + " --save " + seq + "/sensor.json");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("'--save': a project file's name ends in .hdrproj, got"), std::string::npos) << r.output;
   EXPECT_EQ(test::ReadText(dir / "seq" / "sensor.json"), sensor);
   EXPECT_FALSE(std::filesystem::exists(dir / "seq" / "trajectory.txt"));
 }
@@ -166,6 +173,19 @@ TEST(Cli, SimulateSweepAndBadSettings) {
   r = RunCli("simulate --out " + (dir / "x").string() + " --size 10by10");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
+  // Numbers with something after them, or a sign an unsigned value cannot take, were read up
+  // to where they stopped making sense and taken.
+  for (const char* bad : {"--size 320x240junk", "--size 0x240"}) {
+    r = RunCli("simulate --out " + (dir / "x").string() + " " + bad);
+    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
+  }
+  for (const char* bad : {"seed=-1", "frames=12abc", "exposure=8ms", "seed="}) {
+    r = RunCli("scan synthetic:" + std::string(bad) + " --out " + (dir / "x").string());
+    EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("cannot parse '" + std::string(bad) + "'"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x"));
   r = RunCli("simulate --out " + (dir / "x").string() + " --ae list --exposures 3,abc");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("'abc'"), std::string::npos) << r.output;
@@ -358,6 +378,22 @@ void ReverseExposures(const fs::path& sweep) {
   for (std::size_t i = 0; i < stamp.size(); ++i) out << stamp[i] << " " << exposure[exposure.size() - 1 - i] << "\n";
 }
 
+// Rewrites a sweep's exposure.txt with an analog gain column: gain(i) for frame i (none: no
+// column on that line).
+void AddGains(const fs::path& sweep, const std::function<std::optional<double>(int)>& gain) {
+  std::ifstream in(sweep / "exposure.txt");
+  std::vector<std::string> lines;
+  std::string line;
+  int i = 0;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] != '#')
+      if (const std::optional<double> g = gain(i++)) line += " " + std::to_string(*g);
+    lines.push_back(line);
+  }
+  std::ofstream out(sweep / "exposure.txt");
+  for (const auto& l : lines) out << l << "\n";
+}
+
 // The bad sweeps a new user makes end in a clear message, before the fit where they can,
 // and nothing is written.
 // The wizard's steps headless: a sweep captured from the synthetic sensor (exposures planned
@@ -421,6 +457,31 @@ TEST(Cli, CalibrateRefusesBadSweepsBeforeWritingAnything) {
   EXPECT_NE(r.output.find("at least 3"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("response ("), std::string::npos) << "refused after fitting:\n" << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // An analog gain that changes across the sweep (exposure x gain held constant: it was read
+  // and ignored, the curve 31-47 % off and judged good) or given for some frames only: refused
+  // naming exposure.txt; a gain held fixed cancels out and calibrates.
+  const fs::path gained = dir / "gained";
+  ASSERT_EQ(RunCli("simulate --out " + gained.string() + " --sweep --sweep-exposures 1,2,4,8,16,32 --sweep-repeats 3 "
+                   "--size 96x72").status, 0);
+  AddGains(gained, [](int i) { return std::optional<double>(32.0 / double(1 << (i / 3))); });
+  r = RunCli("calibrate " + gained.string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find((gained / "exposure.txt").string() + ": the analog gain changes across the sweep (1.000 to "
+                          "32.000)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  ASSERT_EQ(RunCli("simulate --out " + (dir / "some").string() + " --sweep --sweep-exposures 1,2,4,8,16,32 "
+                   "--sweep-repeats 3 --size 96x72").status, 0);
+  AddGains(dir / "some", [](int i) { return i < 4 ? std::optional<double>(2.0) : std::nullopt; });
+  r = RunCli("calibrate " + (dir / "some").string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("gives the analog gain for 4 of 18 frames"), std::string::npos) << r.output;
+  ASSERT_EQ(RunCli("simulate --out " + (dir / "fixed").string() + " --sweep --sweep-exposures 1,2,4,8,16,32 "
+                   "--sweep-repeats 3 --size 96x72").status, 0);
+  AddGains(dir / "fixed", [](int) { return std::optional<double>(4.0); });
+  r = RunCli("calibrate " + (dir / "fixed").string() + " --out " + (dir / "fixed.json").string());
+  EXPECT_EQ(r.status, 0) << r.output;
   // Exposures listed in reverse: said so (not blamed on the output file), before the fit.
   const fs::path rev = dir / "rev";
   ASSERT_EQ(RunCli("simulate --out " + rev.string() + " --sweep --sweep-exposures 1,2,4,8,16,32 --sweep-repeats 3 "

@@ -56,6 +56,25 @@ TEST(OutputFile, StagingNamesAreUnpredictableAndALinkAtTheOldNameIsNotFollowed) 
   EXPECT_FALSE(fs::exists(dir / "t.txt"));
 }
 
+// Names up to the file system's 255 bytes are written: the staging name beside them is
+// shortened (it added 22 bytes, and a 234-byte name failed at the end of the work).
+TEST(OutputFile, NamesUpToTheFileSystemsLimitAreWritten) {
+  TempDir dir;
+  for (std::size_t n : {233u, 234u, 255u}) {
+    const std::string name = std::string(n - 4, 'a') + ".txt";
+    WriteFileAtomically(dir / name, "content");
+    EXPECT_EQ(ReadText(dir / name), "content") << n;
+  }
+  // Shortened staging names are still recognised as staging names.
+  {
+    OutputFile f(dir / (std::string(251, 'b') + ".txt"));
+    const std::vector<fs::path> staged = test::StagingFiles(dir.path());
+    ASSERT_EQ(staged.size(), 1u);
+    EXPECT_LE(staged[0].filename().string().size(), 255u);
+  }
+  EXPECT_TRUE(test::StagingFiles(dir.path()).empty());
+}
+
 TEST(OutputFile, TargetsThatAreNotRegularFilesAreRefusedAndKept) {
   TempDir dir;
   WriteText(dir / "victim.txt", "precious");

@@ -89,6 +89,13 @@ TEST(Trajectory, WrongFieldCountAndNaNAndZeroQuaternion) {
   ExpectErrorContaining([&] { ReadTrajectory(dir / "g.txt"); }, {"g.txt:1:", "tz"});
   WriteText(dir / "g.txt", "1.0 0 0 0 0 0 0 0\n");
   ExpectErrorContaining([&] { ReadTrajectory(dir / "g.txt"); }, {"g.txt:1:", "quaternion"});
+  // A position no camera has (eval reported an ATE of inf from one such line).
+  WriteText(dir / "g.txt", "1.0 0 0 0 0 0 0 1\n2.0 1e300 0 0 0 0 0 1\n");
+  ExpectErrorContaining([&] { ReadTrajectory(dir / "g.txt"); }, {"g.txt:2:", "tx is 1e300", "at most 1e9 m"});
+  WriteText(dir / "g.txt", "1.0 0 0 0 0 0 0 1\n2.0 0 -2e9 0 0 0 0 1\n");
+  ExpectErrorContaining([&] { ReadTrajectory(dir / "g.txt"); }, {"g.txt:2:", "ty is -2e9"});
+  WriteText(dir / "g.txt", "1.0 0 0 0 0 0 0 1\n2.0 0 0 999999999 0 0 0 1\n");
+  EXPECT_EQ(ReadTrajectory(dir / "g.txt").size(), 2u);
 }
 
 TEST(Exposure, ReadsOptionalGainAndRejectsNonPositive) {

@@ -110,6 +110,26 @@ TEST(ScanJob, AContinuedScanGoesOnAfterItsFramesAsIfItNeverStopped) {
   EXPECT_EQ(from_small.Continue(p, *small, "synthetic:frames=16,size=80x60,seed=3"), jobs::ContinueFrom::kOtherCamera);
 }
 
+// A project named near the 255-byte limit: its recovery file (named after it) and its
+// outputs are still written (both failed, and the scan was lost).
+TEST(ScanJob, AProjectNamedNearTheLimitKeepsItsRecoveryFile) {
+  Scratch s;
+  auto src = io::OpenSource(kSpec, "");
+  // 99 bytes, a two-byte UTF-8 character across the 100-byte cut, 150 more: the character is
+  // not split.
+  const std::string stem = std::string(99, 'p') + "\xc3\xa9" + std::string(150, 'p');
+  jobs::ScanJob job(pipeline::PipelineOptions{}, src->sensor(), stem, 0);
+  EXPECT_LE(job.recovery_file().filename().string().size(), 255u);
+  EXPECT_EQ(job.recovery_file().filename().string().rfind(std::string(99, 'p') + "-", 0), 0u)
+      << job.recovery_file().filename();
+  Scan(job, *src, 3);
+  EXPECT_EQ(job.Autosave(true), "");
+  EXPECT_EQ(io::LoadProject(job.recovery_file()).resume.frames, 3);
+  const fs::path project = s.dir / (std::string(247, 'q') + ".hdrproj");
+  job.Save(project, true);
+  EXPECT_EQ(io::LoadProject(project).resume.frames, 3);
+}
+
 TEST(ScanJob, OutputsAreOneSetAndAFailureKeepsTheModelInTheRecoveryFile) {
   Scratch s;
   auto src = io::OpenSource(kSpec, "");
@@ -157,6 +177,20 @@ TEST(ScanJob, OutputsAreOneSetAndAFailureKeepsTheModelInTheRecoveryFile) {
   fs::create_directories(s.dir / "blocked" / "mesh.ply");
   EXPECT_THROW(jobs::ScanJob::CheckOutputs(s.dir / "blocked", s.dir / "blocked" / "scan.hdrproj", kSpec), Error);
   EXPECT_NO_THROW(jobs::ScanJob::CheckOutputs(out, out / "scan.hdrproj", kSpec));
+  // OUT/keyframes a link to another folder (the keyframes were written through it, over
+  // that folder's files): refused before the scan, the folder untouched.
+  fs::create_directories(s.dir / "victim");
+  std::ofstream(s.dir / "victim" / "000000.png") << "precious";
+  fs::create_directories(s.dir / "linked");
+  fs::create_directory_symlink(s.dir / "victim", s.dir / "linked" / "keyframes");
+  try {
+    jobs::ScanJob::CheckOutputs(s.dir / "linked", s.dir / "linked" / "scan.hdrproj", kSpec);
+    ADD_FAILURE() << "a keyframes folder that is a link was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("keyframes: is a symbolic link"), std::string::npos) << e.what();
+  }
+  std::ifstream victim(s.dir / "victim" / "000000.png");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(victim), {}), "precious");
   // Outputs that are the recording read (however the path is written) are refused.
   EXPECT_THROW(jobs::ScanJob::CheckOutputs(s.dir / "out" / "." , s.dir / "p.hdrproj", out.string()), InputError);
   EXPECT_THROW(jobs::ScanJob::CheckOutputs(s.dir / "x", out / "scan.hdrproj", (out / "scan.hdrproj").string()),
@@ -187,12 +221,12 @@ TEST(ScanJob, RecoveryFilesOfOldScansArePrunedWithANotice) {
   // Kept: the newest 20 of the 22 recent ones; removed: their 2 oldest and the 3 old ones.
   for (int i = 0; i < 25; ++i)
     EXPECT_EQ(fs::exists(folder / ("scan-" + std::to_string(i) + ".hdrproj")), i < 20) << i;
-  EXPECT_NE(next.notice().find("removed 5 recovery files of earlier unfinished scans from " + folder.string()),
-            std::string::npos)
+  EXPECT_NE(next.notice().find("removed 5 recovery files of earlier unfinished scans ("), std::string::npos)
       << next.notice();
+  EXPECT_NE(next.notice().find(" from " + folder.string() + ": older than 30 days"), std::string::npos) << next.notice();
   // No longer resumed, the old autosave goes too; then there is nothing to say.
   jobs::ScanJob third(pipeline::PipelineOptions{}, src->sensor(), "third", 0);
-  EXPECT_NE(third.notice().find("removed 1 recovery file of"), std::string::npos) << third.notice();
+  EXPECT_NE(third.notice().find("removed 1 recovery files of"), std::string::npos) << third.notice();
   EXPECT_FALSE(fs::exists(first.recovery_file()));
   jobs::ScanJob fourth(pipeline::PipelineOptions{}, src->sensor(), "fourth", 0);
   EXPECT_EQ(fourth.notice(), "");

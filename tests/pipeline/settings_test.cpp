@@ -87,6 +87,12 @@ TEST(Settings, BadValuesAreRefusedNamingTheKey) {
   o.volume.encoding = volume::VoxelEncoding::kCompact;
   FindSetting("volume.max_weight").set(o, "100");
   test::ExpectErrorContaining([&] { o.Check(); }, {"'volume.max_weight'", "65"});
+  // No iteration on the finest level: every pose would be the prediction (it was taken).
+  PipelineOptions none;
+  FindSetting("tracker.iterations").set(none, "0,0,0");
+  test::ExpectErrorContaining([&] { none.Check(); }, {"'tracker.iterations'", "finest level (the last of 3)"});
+  FindSetting("tracker.iterations").set(none, "0,0,5");
+  EXPECT_NO_THROW(none.Check());
 }
 
 }  // namespace
