@@ -109,13 +109,13 @@ const std::vector<OperatorDecl>& Operators() {
   return ops;
 }
 
-const OperatorDecl& FindOperator(const std::string& key) {
+const OperatorDecl& FindOperator(const std::string& key, const std::string& setting) {
   std::string known;
   for (const auto& op : Operators()) {
     if (op.key == key) return op;
     known += (known.empty() ? "" : ", ") + op.key;
   }
-  throw SettingError("--op", "unknown tone-mapping operator '" + key + "' (known: " + known + ")");
+  throw SettingError(setting, "unknown tone-mapping operator '" + key + "' (known: " + known + ")");
 }
 
 Params ResolveParams(const OperatorDecl& op, const Params& values) {
@@ -181,10 +181,10 @@ void ParseSetting(const OperatorDecl& op, const std::string& text, Params& value
   values[key] = v;
 }
 
-Spec ParseSpec(const std::string& text) {
+Spec ParseSpec(const std::string& text, const std::string& setting) {
   Spec s;
   s.op = text.substr(0, text.find(','));
-  const OperatorDecl& d = FindOperator(s.op);
+  const OperatorDecl& d = FindOperator(s.op, setting);
   for (std::size_t at = text.find(','); at != std::string::npos;) {
     const std::size_t next = text.find(',', at + 1);
     ParseSetting(d, text.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1), s.values);

@@ -88,8 +88,9 @@ class Operator {
 
 // All operators, in the order the studio lists them (the first is the default).
 const std::vector<OperatorDecl>& Operators();
-// The operator with `key`; throws SettingError("--op", ...) listing the known keys.
-const OperatorDecl& FindOperator(const std::string& key);
+// The operator with `key`; throws SettingError naming `setting` (the flag it came from)
+// and listing the known keys.
+const OperatorDecl& FindOperator(const std::string& key, const std::string& setting = "--op");
 
 // The declared defaults, overridden by `values` (checked: unknown keys and values out of
 // range throw SettingError naming the key, its range and unit). A key "preset" is not a
@@ -106,7 +107,7 @@ struct Spec {
   std::string op;
   Params values;
 };
-Spec ParseSpec(const std::string& text);
+Spec ParseSpec(const std::string& text, const std::string& setting = "--tone");
 std::string FormatSpec(const Spec& spec);
 
 // Display-linear to display code values with a power-law display (gamma), in place.

@@ -189,6 +189,16 @@ TEST(Cli, SimulateSweepAndBadSettings) {
   r = RunCli("simulate --out " + (dir / "x").string() + " --ae list --exposures 3,abc");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("'abc'"), std::string::npos) << r.output;
+  // "nan" and "inf" read as numbers pass a range check (--autosave nan was taken); a bad
+  // --tone was reported as --op.
+  for (const auto& [flags, said] : {std::pair{" --autosave nan", "setting '--autosave': 'nan' is not a finite number"},
+                                    std::pair{" --volume.voxel_m INF", "setting 'volume.voxel_m': 'INF' is not a number"},
+                                    std::pair{" --tone bogus", "setting '--tone': unknown tone-mapping operator 'bogus'"}}) {
+    r = RunCli("scan synthetic:frames=3 --out " + (dir / "x").string() + flags);
+    EXPECT_EQ(r.status, 1) << flags << ": " << r.output;
+    EXPECT_NE(r.output.find(said), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x"));
   // An existing, non-empty output folder is refused and left alone.
   r = RunCli("simulate --out " + (dir / "sweep").string() + " --frames 2 --size 32x24");
   EXPECT_NE(r.status, 0);
