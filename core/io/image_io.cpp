@@ -29,6 +29,8 @@ const char* DepthName(int cv_depth) {
 // memory, and `check_header` where given) before anything is decoded.
 cv::Mat Load(const std::filesystem::path& file, const HeaderCheck& check_header) {
   const std::string bytes = ReadInputFile(file, kMaxImageBytes, "an image");
+  // (OpenCV answers an empty buffer with an assertion, which was shown as the message)
+  if (bytes.empty()) throw InputError(file, "is empty (0 bytes), not an image");
   if (const std::optional<ImageHeader> h = PeekImageHeader(file, bytes)) {
     CheckImageDimensions(file, h->width, h->height, h->bytes_per_pixel);
     if (check_header) check_header(h->width, h->height);

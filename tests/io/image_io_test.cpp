@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <vector>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/error.h"
 #include "io/image_io.h"
 #include "support/test_support.h"
 
@@ -68,6 +72,19 @@ TEST(ImageIo, MissingAndCorruptFilesNamed) {
   ExpectErrorContaining([&] { ReadColorImage(dir / "none.png"); }, {"none.png", "missing"});
   test::WriteText(dir / "bad.png", "\x89PNG\r\n\x1a\nthis is not a png");
   ExpectErrorContaining([&] { ReadColorImage(dir / "bad.png"); }, {"bad.png", "decoded"});
+  // An empty file: said so, not OpenCV's assertion on an empty buffer.
+  test::WriteText(dir / "empty.png", "");
+  for (const auto& read : std::vector<std::function<void()>>{[&] { ReadColorImage(dir / "empty.png"); },
+                                                              [&] { ReadDepthImage(dir / "empty.png"); }}) {
+    try {
+      read();
+      ADD_FAILURE() << "an empty file was read as an image";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("empty.png: is empty (0 bytes), not an image"), std::string::npos) << what;
+      EXPECT_EQ(what.find("Assertion"), std::string::npos) << what;
+    }
+  }
 }
 
 }  // namespace
