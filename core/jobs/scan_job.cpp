@@ -136,6 +136,12 @@ ContinueFrom ScanJob::Continue(const io::Project& project, pipeline::FrameSource
   return source.Skip(project.resume.frames) ? ContinueFrom::kAfterScanned : ContinueFrom::kNothingLeft;
 }
 
+void ScanJob::SaveRecovery() {
+  fs::create_directories(recovery_.parent_path());
+  io::SaveProject(recovery_, *session_, Info(false));
+  saved_frames_ = session_->frames();
+}
+
 std::string ScanJob::Autosave(bool force) {
   const int frames = session_->frames();
   if (frames == 0 || frames == saved_frames_) return {};
@@ -143,9 +149,7 @@ std::string ScanJob::Autosave(bool force) {
   if (!force && (autosave_s_ <= 0 || std::chrono::duration<double>(now - autosave_time_).count() < autosave_s_)) return {};
   autosave_time_ = now;
   try {
-    fs::create_directories(recovery_.parent_path());
-    io::SaveProject(recovery_, *session_, Info(false));
-    saved_frames_ = frames;
+    SaveRecovery();
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -160,9 +164,7 @@ void ScanJob::Save(const fs::path& file, bool finished) {
 
 std::string ScanJob::Keep() {
   try {
-    fs::create_directories(recovery_.parent_path());
-    io::SaveProject(recovery_, *session_, Info(false));
-    saved_frames_ = session_->frames();
+    SaveRecovery();
   } catch (const std::exception& e) {
     return "the model could not be kept either: " + std::string(e.what());
   }

@@ -101,6 +101,7 @@ class ScanJob {
 
  private:
   io::ProjectSaveInfo Info(bool finished) const { return {source_, spec_, finished}; }
+  void SaveRecovery();  // the scan as it stands to the recovery file (throws where it cannot)
   std::unique_ptr<pipeline::ScanSession> session_;
   std::filesystem::path recovery_;
   double autosave_s_ = 0;
