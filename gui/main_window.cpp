@@ -57,6 +57,10 @@
 #include "gui/tone_panel.h"
 #include "gui/image_view.h"
 #include "gui/sensor_panel.h"
+#include "gui/stage_images.h"
+#include "gui/stage_views.h"
+#include "gui/status_panel.h"
+#include "gui/window_report.h"
 #include "gui/settings_form.h"
 #include "gui/vtk_view.h"
 #include "io/exr.h"
@@ -70,26 +74,6 @@ double ThreadCpuMs() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
-}
-// CPU seconds of this process's threads so far, summed by thread name (Linux; empty elsewhere).
-QJsonObject CpuSecondsByThread() {
-  QJsonObject out;
-  const long tick = sysconf(_SC_CLK_TCK);
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator("/proc/self/task", ec)) {
-    std::ifstream comm(e.path() / "comm"), stat(e.path() / "stat");
-    std::string name, line;
-    if (!std::getline(comm, name) || !std::getline(stat, line)) continue;
-    // Fields after the name's closing parenthesis: state is the 3rd, utime the 14th, stime the 15th.
-    std::istringstream in(line.substr(line.rfind(')') + 2));
-    std::string field;
-    double ticks = 0;
-    for (int i = 3; i <= 15 && in >> field; ++i)
-      if (i >= 14) ticks += std::stod(field);
-    const QString key = QString::fromStdString(name);
-    out[key] = out.value(key).toDouble() + ticks / double(tick);
-  }
-  return out;
 }
 }  // namespace
 
@@ -109,39 +93,6 @@ QScrollArea* Scrolled(QWidget* w) {
 
 const char* kSynthRoom = "synthetic:scene=room,frames=300,ae=flicker";
 const char* kSynthDesk = "synthetic:scene=desk,frames=300,ae=smooth";
-
-// The views' pictures are 32-bit RGB, the format Qt paints without converting it first.
-QImage FromColor(const ColorImage& c) {
-  QImage img(c.width(), c.height(), QImage::Format_RGB32);
-  for (int y = 0; y < c.height(); ++y) {
-    auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
-    for (int x = 0; x < c.width(); ++x) row[x] = qRgb(c(x, y).r, c(x, y).g, c(x, y).b);
-  }
-  return img;
-}
-
-// A scalar image to grey over [lo, hi]; `valid(v)` false draws dark blue (no data).
-template <typename F>
-QImage Grey(const Image<float>& im, float lo, float hi, F valid) {
-  QImage img(im.width(), im.height(), QImage::Format_RGB32);
-  for (int y = 0; y < im.height(); ++y) {
-    auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
-    for (int x = 0; x < im.width(); ++x) {
-      const float v = im(x, y);
-      if (!valid(v)) {
-        row[x] = qRgb(0, 0, 40);
-        continue;
-      }
-      const int g = int(std::lround(255.f * std::clamp((v - lo) / (hi - lo), 0.f, 1.f)));
-      row[x] = qRgb(g, g, g);
-    }
-  }
-  return img;
-}
-
-QString Rad(Float3 r) {
-  return QObject::tr("radiance %1 %2 %3").arg(r.x, 0, 'g', 4).arg(r.y, 0, 'g', 4).arg(r.z, 0, 'g', 4);
-}
 
 }  // namespace
 
@@ -264,7 +215,7 @@ MainWindow::MainWindow(const StudioOptions& o, QWidget* parent) : QMainWindow(pa
 }
 
 void MainWindow::OpenProject(const QString& path) {
-  HideError();
+  status_->HideError();
   latest_.reset();
   shown_.reset();
   QMetaObject::invokeMethod(worker_, [w = worker_, path] { w->OpenProject(path); }, Qt::QueuedConnection);
@@ -328,38 +279,9 @@ MainWindow::~MainWindow() {
 void MainWindow::BuildViews() {
   view3d_ = new VtkView(this);
   setCentralWidget(view3d_);
-  struct V {
-    const char* key;
-    QString title;
-    Qt::DockWidgetArea area;
-  };
-  // Two columns of views right of the 3-D view: what the camera delivers and the radiance
-  // made of it, then what the engine derives and the model.
-  const V defs[] = {{"colour", tr("Colour (as delivered)"), Qt::RightDockWidgetArea},
-                    {"depth", tr("Depth"), Qt::RightDockWidgetArea},
-                    {"radiance", tr("Radiance (tone-mapped)"), Qt::RightDockWidgetArea},
-                    {"nr", tr("Normalized radiance"), Qt::RightDockWidgetArea},
-                    {"confidence", tr("Confidence (PCF)"), Qt::RightDockWidgetArea},
-                    {"model_radiance", tr("Model radiance (ray cast)"), Qt::RightDockWidgetArea},
-                    {"model_normals", tr("Model normals (ray cast)"), Qt::RightDockWidgetArea}};
-  for (const V& d : defs) {
-    auto* v = new ImageView(d.title, this);
+  stage_views_.Build(this);
+  for (ImageView* v : views_)
     connect(v, &ImageView::status, this, [this](const QString& m) { statusBar()->showMessage(m, 5000); });
-    auto* dock = new QDockWidget(d.title, this);
-    dock->setObjectName(QString("dock_") + d.key);
-    dock->setWidget(v);
-    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
-                      QDockWidget::DockWidgetClosable);
-    addDockWidget(d.area, dock);
-    views_[d.key] = v;
-    docks_[d.key] = dock;
-  }
-  splitDockWidget(docks_["colour"], docks_["confidence"], Qt::Horizontal);
-  splitDockWidget(docks_["colour"], docks_["depth"], Qt::Vertical);
-  splitDockWidget(docks_["depth"], docks_["radiance"], Qt::Vertical);
-  splitDockWidget(docks_["radiance"], docks_["nr"], Qt::Vertical);
-  splitDockWidget(docks_["confidence"], docks_["model_radiance"], Qt::Vertical);
-  splitDockWidget(docks_["model_radiance"], docks_["model_normals"], Qt::Vertical);
 }
 
 // The default sizes of the panels, and on a screen under 1000 px of free height (a 1366x768
@@ -452,68 +374,10 @@ void MainWindow::BuildControls() {
 }
 
 void MainWindow::BuildStatus() {
-  auto* w = new QWidget;
-  auto* l = new QVBoxLayout(w);
-  frames_label_ = new QLabel(tr("No frame yet"));
-  health_ = new QLabel(tr("Tracking: -"));
-  health_->setObjectName("health");
-  health_->setWordWrap(true);
-  reloc_caption_ = new QLabel;
-  reloc_caption_->setWordWrap(true);
-  reloc_caption_->hide();
-  reloc_hint_ = new QLabel;
-  reloc_hint_->setObjectName("reloc_hint");
-  reloc_hint_->hide();
-  error_ = new QLabel;
-  error_->setObjectName("error");
-  error_->setWordWrap(true);
-  error_->setStyleSheet("QLabel { color: white; background: #a02020; padding: 4px; }");
-  error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  error_->hide();
-  // Stage times as a grid of plain labels made once (a rich-text table re-laid out its whole
-  // document on every frame): names left, times right-aligned, two column pairs.
-  stages_ = new QWidget;
-  auto* grid = new QGridLayout(stages_);
-  grid->setContentsMargins(0, 0, 0, 0);
-  grid->setHorizontalSpacing(6);
-  grid->setVerticalSpacing(0);
-  grid->setColumnMinimumWidth(2, 10);
-  const QString stage_names[] = {tr("convert"), tr("normalize"), tr("track"), tr("compensate"), tr("integrate"), tr("ray cast")};
-  for (int i = 0; i < 6; ++i) {
-    grid->addWidget(new QLabel(stage_names[i]), i / 2, 3 * (i % 2));
-    stage_ms_[i] = new QLabel;
-    stage_ms_[i]->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-    grid->addWidget(stage_ms_[i], i / 2, 3 * (i % 2) + 1);
-  }
-  auto* total = new QLabel(tr("total"));
-  QFont bold = total->font();
-  bold.setBold(true);
-  total->setFont(bold);
-  grid->addWidget(total, 3, 0);
-  stage_ms_[6] = new QLabel;
-  stage_ms_[6]->setFont(bold);
-  stage_ms_[6]->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-  grid->addWidget(stage_ms_[6], 3, 1, 1, 4);
-  grid->setColumnStretch(5, 1);
-  memory_ = new QLabel;
-  memory_->setObjectName("memory");
-  memory_->setWordWrap(true);
-  plot_ = new ExposurePlot;
-  // Text on the left, the exposure plot beside it: the panel stays short enough for a
-  // 1366x768 screen.
-  auto* text = new QVBoxLayout;
-  for (QWidget* x : {static_cast<QWidget*>(frames_label_), static_cast<QWidget*>(health_),
-                     static_cast<QWidget*>(reloc_caption_), static_cast<QWidget*>(reloc_hint_),
-                     static_cast<QWidget*>(error_), static_cast<QWidget*>(stages_), static_cast<QWidget*>(memory_)})
-    text->addWidget(x);
-  text->addStretch(1);
-  auto* row = new QHBoxLayout;
-  row->addLayout(text, 3);
-  row->addWidget(plot_, 2);
-  l->addLayout(row);
+  status_ = new StatusPanel;
   auto* dock = new QDockWidget(tr("Status"), this);
   dock->setObjectName("dock_status");
-  dock->setWidget(w);
+  dock->setWidget(status_);
   addDockWidget(Qt::BottomDockWidgetArea, dock);
   docks_["status"] = dock;
 }
@@ -556,8 +420,7 @@ void MainWindow::ConnectSensors() {
   });
   connect(worker_, &ScanWorker::cameraBack, this, [this](const QString& msg) {
     camera_lost_ = false;
-    HideError();
-    error_->clear();
+    status_->ClearError();
     start_->setText(tr("Start"));
     statusBar()->showMessage(msg, 15000);
   });
@@ -724,7 +587,7 @@ ScanSettings MainWindow::CurrentSettings() const {
 }
 
 void MainWindow::ApplyEngineSettings() {
-  HideError();
+  status_->HideError();
   try {
     emit configure(CurrentSettings());
     tone_->SetDevice(engine_->Value("device") == "cuda" ? Device::kCuda : Device::kCpu);
@@ -735,7 +598,7 @@ void MainWindow::ApplyEngineSettings() {
 }
 
 void MainWindow::StartScan() {
-  HideError();
+  status_->HideError();
   emit start();
 }
 void MainWindow::PauseScan() { emit pause(); }
@@ -751,9 +614,9 @@ void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
   if (latest_->has_images) images_snap_ = latest_;
   if (!latest_->preview) {
     const qint64 now = QDateTime::currentMSecsSinceEpoch();
-    if (scan_first_ms_ < 0) scan_first_ms_ = now, scan_first_frame_ = latest_->report.index;
-    scan_last_ms_ = now;
-    scan_last_frame_ = latest_->report.index;
+    if (stats_.scan_first_ms < 0) stats_.scan_first_ms = now, stats_.scan_first_frame = latest_->report.index;
+    stats_.scan_last_ms = now;
+    stats_.scan_last_frame = latest_->report.index;
   }
   if (!opts_.screenshot.isEmpty() && opts_.frames > 0 && latest_->report.index + 1 >= opts_.frames) {
     emit pause();
@@ -765,78 +628,24 @@ void MainWindow::OnSnapshot(std::shared_ptr<const Snapshot> s) {
   }
 }
 
-// An error takes the place of the stage times and the memory line in the status panel while
-// it is shown: the panel keeps the height of its usual content, and a message of three lines
-// or more beside them was cut off at both ends (1366x768). The whole message is also the
-// label's tooltip and in the status bar, and can be selected and copied.
-void MainWindow::ShowError(const QString& message) {
-  error_->setText(message);
-  error_->setToolTip(message);
-  error_->show();
-  stages_->hide();
-  memory_->hide();
-}
-void MainWindow::HideError() {
-  error_->hide();
-  stages_->show();
-  memory_->show();
-}
-
 void MainWindow::OnFailed(const QString& message) {
-  ShowError(message);
+  status_->ShowError(message);
   docks_["status"]->show();
   statusBar()->showMessage(message);
   if (!opts_.screenshot.isEmpty()) QTimer::singleShot(300, this, &MainWindow::FinishScripted);
 }
 
-QString MainWindow::health_text() const { return health_->text(); }
-QString MainWindow::error_text() const { return error_->isVisible() || !error_->text().isEmpty() ? error_->text() : QString(); }
-
-// The camera's own images: the colour as delivered and the depth (also the live preview).
-void MainWindow::RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s) {
-  auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
-  if (visible("colour")) {
-    views_["colour"]->SetImage(FromColor(s->color), [s](int x, int y) {
-      const Rgb8 c = s->color(x, y);
-      return QStringLiteral("RGB %1 %2 %3 (8-bit)").arg(c.r).arg(c.g).arg(c.b);
-    });
-  }
-  if (visible("depth") && !s->images.depth.empty()) {
-    float hi = 0.5f;
-    for (std::size_t i = 0; i < s->images.depth.size(); ++i) hi = std::max(hi, s->images.depth[i]);
-    hi = std::min(hi, 8.f);
-    const ColorImage cd = tonemap::ColorizeDepth(s->images.depth, 0.f, hi);
-    QVector<QRgb> bar;
-    DepthImage ramp(1, 64);
-    for (int i = 0; i < 64; ++i) ramp(0, i) = std::max(1e-3f, hi * float(i) / 63.f);
-    const ColorImage rc = tonemap::ColorizeDepth(ramp, 0.f, hi);
-    for (int i = 0; i < 64; ++i) bar.push_back(qRgb(rc(0, i).r, rc(0, i).g, rc(0, i).b));
-    views_["depth"]->SetScaleBar(bar, 0, hi, "m");
-    views_["depth"]->SetImage(FromColor(cd), [s](int x, int y) {
-      const float z = s->images.depth(x, y);
-      return z > 0 ? tr("depth %L1 m").arg(z, 0, 'f', 3) : tr("no depth");
-    });
-  }
-}
+QString MainWindow::health_text() const { return status_->health_text(); }
+QString MainWindow::error_text() const { return status_->error_text(); }
+std::optional<bool> MainWindow::error_fits() const { return status_->ErrorFits(docks_["status"]); }
 
 void MainWindow::RenderPreview(const std::shared_ptr<const Snapshot>& s) {
-  RenderColourAndDepth(s);
-  const int in_model = s->report.index + 1;
-  frames_label_->setText(in_model > 0 ? tr("Live preview (not scanning); the model holds %1 frames").arg(in_model)
-                                      : tr("Live preview (not scanning)"));
+  stage_views_.ShowCamera(s);
+  status_->ShowPreview(s->report.index + 1);
   if (!s->trajectory.empty()) view3d_->SetTrajectory(s->trajectory.span(), s->camera);
 }
 
-void MainWindow::TellShownViews() {
-  const auto on = [this](const char* k) { return docks_[k]->isVisible() && !views_[k]->visibleRegion().isEmpty(); };
-  pipeline::ViewSet v;
-  v.radiance = on("radiance");
-  v.confidence = on("confidence");
-  v.nr = on("nr");
-  v.depth = on("depth");
-  v.render = on("model_radiance") || on("model_normals");
-  worker_->SetShownViews(v);
-}
+void MainWindow::TellShownViews() { worker_->SetShownViews(stage_views_.Shown()); }
 
 void MainWindow::UpdateMesh() {
   const qint64 now = QDateTime::currentMSecsSinceEpoch();
@@ -850,11 +659,11 @@ void MainWindow::UpdateMesh() {
   mesh_shown_ = mesh_latest_;
   mesh_shown_last_ = mesh_latest_last_;
   mesh_time_ms_ = now;
-  ++mesh_updates_;
-  if (scan_first_ms_ >= 0 && now <= scan_last_ms_ + 100) ++mesh_updates_in_scan_;
+  ++stats_.mesh_updates;
+  if (stats_.scan_first_ms >= 0 && now <= stats_.scan_last_ms + 100) ++stats_.mesh_updates_in_scan;
   const double t0 = ThreadCpuMs();
   view3d_->SetMesh(*mesh_shown_, tone_->MapColours(mesh_shown_->radiance));
-  mesh_handover_ms_ += ThreadCpuMs() - t0;
+  stats_.mesh_handover_ms += ThreadCpuMs() - t0;
 }
 
 void MainWindow::Render(bool now) {
@@ -864,18 +673,18 @@ void MainWindow::Render(bool now) {
   if (!s || s == shown_) return;
   const double t0 = ThreadCpuMs();
   // The status (tracking health, frame, timings, memory): a change of the tracking's state
-  // (StatusKey) with the snapshot that brings it, so a loss shows at once; its figures at most
+  // (StatusPanel::Key) with the snapshot that brings it, so a loss shows at once; its figures at most
   // every kStatusMs while scanning. The views, while a scan runs, at the pacer's rate (the
   // scan keeps the cores).
   const qint64 wall = QDateTime::currentMSecsSinceEpoch();
   if (!s->preview && s != status_shown_ &&
-      (now || !scanning_ || wall - status_ms_ >= kStatusMs || StatusKey(*s) != status_key_)) {
-    RenderStatus(s);
+      (now || !scanning_ || wall - status_ms_ >= kStatusMs || StatusPanel::Key(*s) != status_->key_shown())) {
+    status_->Show(*s);
     status_shown_ = s;
     status_ms_ = wall;
   }
   if (!now && !s->preview && scanning_ && !pacer_.Due(wall)) {
-    views_ms_ += ThreadCpuMs() - t0;
+    stats_.views_ms += ThreadCpuMs() - t0;
     return;
   }
   shown_ = s;
@@ -888,7 +697,7 @@ void MainWindow::Render(bool now) {
     worker_->SetImagesIntervalMs(int(pacer_.interval_ms() / 2));
   }
   RenderSnapshot(s->preview || s->has_images || !images_snap_ ? s : images_snap_);
-  views_ms_ += ThreadCpuMs() - t0;
+  stats_.views_ms += ThreadCpuMs() - t0;
 }
 
 void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
@@ -897,164 +706,12 @@ void MainWindow::RenderSnapshot(const std::shared_ptr<const Snapshot>& s) {
     RenderPreview(s);
     return;
   }
-  const auto& im = s->images;
-  const double t = s->report.timestamp;  // the frame's own time: the curve filters at the real frame rate
-  // 2-D views (hidden docks are skipped: they cost nothing).
-  // A project just opened has a model but no live frame: its views keep what they showed.
-  auto visible = [this, &im](const char* k) {
-    const bool live_view = std::strcmp(k, "model_radiance") != 0 && std::strcmp(k, "model_normals") != 0;
-    return docks_[k]->isVisible() && (!live_view || !im.radiance.empty());
-  };
-  if (!s->color.empty()) RenderColourAndDepth(s);
-  if (visible("radiance")) {
-    views_["radiance"]->SetImage(tone_->Map(im.radiance, ToneView::kLive, t), [s](int x, int y) { return Rad(s->images.radiance(x, y)); },
-                                 [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.radiance); });
-  }
-  // Grey ramps for the grey views' scale bars.
-  const auto grey_bar = [] {
-    QVector<QRgb> bar;
-    for (int i = 0; i < 64; ++i) bar.push_back(qRgb(i * 4 + 3, i * 4 + 3, i * 4 + 3));
-    return bar;
-  };
-  if (visible("nr")) {
-    // Normalized radiance: deviations from the local mean in local standard deviations.
-    views_["nr"]->SetScaleBar(grey_bar(), -3, 3, tr("std"));
-    views_["nr"]->SetImage(Grey(im.nr, -3.f, 3.f, [](float v) { return v != 0.f; }), [s](int x, int y) {
-      return QStringLiteral("NR %L1").arg(s->images.nr(x, y), 0, 'f', 3);
-    });
-  }
-  if (visible("confidence")) {
-    float mx = 1e-6f;
-    for (std::size_t i = 0; i < im.confidence.size(); ++i) mx = std::max(mx, im.confidence[i]);
-    views_["confidence"]->SetScaleBar(grey_bar(), 0, mx, tr("PCF"));
-    views_["confidence"]->SetImage(Grey(im.confidence, 0.f, mx, [](float) { return true; }), [s](int x, int y) {
-      return tr("PCF %L1 (max channel %L2)")
-          .arg(s->images.confidence(x, y), 0, 'f', 3)
-          .arg(s->images.max_confidence(x, y), 0, 'f', 3);
-    });
-  }
-  if (visible("model_radiance") && !im.render.radiance.empty()) {
-    views_["model_radiance"]->SetImage(
-        tone_->Map(im.render.radiance, ToneView::kModel, t), [s](int x, int y) { return Rad(s->images.render.radiance(x, y)); },
-        [s](const QString& p) { io::WriteExr(p.toStdString(), s->images.render.radiance); });
-  }
-  if (visible("model_normals") && !im.render.normal.empty()) {
-    const auto& n = im.render.normal;
-    QImage img(n.width(), n.height(), QImage::Format_RGB32);
-    for (int y = 0; y < n.height(); ++y) {
-      auto* row = reinterpret_cast<QRgb*>(img.scanLine(y));
-      for (int x = 0; x < n.width(); ++x) {
-        const Float3 v = n(x, y);
-        const bool hit = Length(v) > 0;
-        row[x] = hit ? qRgb(int(127.5f * (v.x + 1)), int(127.5f * (v.y + 1)), int(127.5f * (v.z + 1))) : qRgb(0, 0, 40);
-      }
-    }
-    views_["model_normals"]->SetImage(img, [s](int x, int y) {
-      const Float3 v = s->images.render.normal(x, y);
-      const float d = s->images.render.depth(x, y);
-      return d > 0 ? tr("normal %L1 %L2 %L3, depth %L4 m").arg(v.x, 0, 'f', 2).arg(v.y, 0, 'f', 2).arg(v.z, 0, 'f', 2).arg(d, 0, 'f', 3)
-                   : tr("no surface");
-    });
-  }
+  stage_views_.ShowStages(s, *tone_);
   // 3-D view: the trajectory every frame (first: the view starts from the camera's pose),
   // the mesh a few times a second.
   view3d_->SetTrajectory(s->trajectory.span(), s->camera);
   view3d_->SetRegion(s->volume_bounds[0], s->volume_bounds[1]);
-  plot_->SetSeries(s->exposure_estimated.span(), s->exposure_reported.span());
-}
-
-namespace {
-
-// A label's style sheet set only when it changes (setting one re-polishes the widget).
-void SetStyle(QLabel* l, const QString& sheet) {
-  if (l->styleSheet() != sheet) l->setStyleSheet(sheet);
-}
-
-}  // namespace
-
-// What must reach the status panel at once: the tracking's state and its warnings.
-QString MainWindow::StatusKey(const Snapshot& s) {
-  const auto& r = s.report;
-  return QStringList{QString::number(int(r.state)), QString::number(r.fused), QString::number(r.quality < 0.5),
-                     QString::number(r.depth_beyond_far > 0.25), QString::fromStdString(r.why),
-                     QString::number(s.reloc_hint_frame), QString::number(s.volume_full.empty())}
-      .join(QLatin1Char('|'));
-}
-
-void MainWindow::RenderStatus(const std::shared_ptr<const Snapshot>& s) {
-  status_key_ = StatusKey(*s);
-  const auto& r = s->report;
-  frames_label_->setText(tr("Frame %1%2 on the %3")
-                             .arg(r.index + 1)
-                             .arg(s->frames_total > 0 ? QStringLiteral(" / %1").arg(s->frames_total) : QString())
-                             .arg(QString::fromStdString(s->device).toUpper()));
-  const QString far = r.depth_beyond_far > 0.25
-                          ? "\n" + tr("%1 % of the view lies beyond %L2 m, past the model's ray cast: tracking uses "
-                                       "nearer surfaces (volume.raycast_far_m)")
-                                        .arg(int(100 * r.depth_beyond_far))
-                                        .arg(s->raycast_far_m, 0, 'f', 1)
-                          : QString();
-  using pipeline::FrameState;
-  const QString why = wizard::EngineText(r.why);
-  if (r.state == FrameState::kWaiting) {
-    health_->setText(tr("WAITING: %1").arg(why) + far);
-    SetStyle(health_, "QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
-  } else if (r.state == FrameState::kLost) {
-    health_->setText(tr("TRACKING LOST: %1 (frame not fused)").arg(why) + far);
-    SetStyle(health_, "QLabel { color: white; background: #c03030; padding: 3px; font-weight: bold; }");
-  } else if (!r.fused) {
-    health_->setText(tr("FOUND AGAIN, CONFIRMING: %1 (frame not fused)").arg(why) + far);
-    SetStyle(health_, "QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");
-  } else {
-    // The quality figure warns before a loss: below one half the operator should slow down.
-    const bool slow = r.quality < 0.5;
-    health_->setText((slow ? tr("Tracking quality %1 %: SLOW DOWN (%2 % of pixels matched)")
-                           : tr("Tracking quality %1 % (%2 % of pixels matched)"))
-                         .arg(int(100 * r.quality))
-                         .arg(int(100 * r.tracking.inlier_share)) +
-                     (r.state == FrameState::kRelocalised ? "\n" + tr("Relocalised from an earlier view") : QString()) +
-                     far);
-    SetStyle(health_, far.isEmpty() && !slow ? "QLabel { color: white; background: #207040; padding: 3px; }"
-                                                  : "QLabel { color: white; background: #a07010; padding: 3px; }");
-  }
-  if (!s->reloc_hint.empty() && s->reloc_hint_frame != reloc_hint_frame_) {
-    reloc_hint_frame_ = s->reloc_hint_frame;
-    reloc_hint_->setPixmap(QPixmap::fromImage(FromColor(s->reloc_hint))
-                               .scaled(240, 180, Qt::KeepAspectRatio, Qt::SmoothTransformation));
-    reloc_hint_->setToolTip(tr("The scan's view at frame %1").arg(s->reloc_hint_frame + 1));
-    reloc_caption_->setText(tr("Point the camera where the scan saw this (frame %1):").arg(s->reloc_hint_frame + 1));
-    reloc_hint_->show();
-    reloc_caption_->show();
-  } else if (s->reloc_hint.empty()) {
-    reloc_hint_frame_ = -1;
-    reloc_hint_->hide();
-    reloc_caption_->hide();
-  }
-  const auto& m = r.ms;
-  const double ms[] = {m.convert, m.normalize, m.track, m.compensate, m.integrate, m.raycast};
-  for (int i = 0; i < 6; ++i) stage_ms_[i]->setText(tr("%L1 ms").arg(ms[i], 0, 'f', 1));
-  stage_ms_[6]->setText(tr("%L1 ms (%L2 frames/s)").arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
-  memory_->setText(tr("Volume: %L1 of %L2 MiB in %3 bricks")
-                       .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
-                       .arg(s->volume_budget_mb, 0, 'f', 0)
-                       .arg(s->bricks));
-  if (s->gpu_budget_mb > 0 && s->device == "cuda")
-    memory_->setText(memory_->text() + "\n" +
-                     tr("GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)")
-                         .arg(double(s->streaming.gpu_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
-                         .arg(s->gpu_budget_mb, 0, 'f', 0)
-                         .arg(s->streaming.gpu_bricks)
-                         .arg(s->streaming.host_bricks)
-                         .arg(s->streaming.swapped_out)
-                         .arg(s->streaming.swapped_in));
-  if (!s->volume_full.empty()) {
-    memory_->setText(memory_->text() + "\n" +
-                     tr("VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and "
-                        "exported.").arg(QString::fromStdString(s->volume_full)));
-    SetStyle(memory_, "QLabel { color: white; background: #b06010; padding: 3px; }");
-  } else {
-    SetStyle(memory_, QString());
-  }
+  status_->ShowExposure(*s);
 }
 
 bool MainWindow::SaveScreenshot(const QString& path) {
@@ -1062,69 +719,7 @@ bool MainWindow::SaveScreenshot(const QString& path) {
   QApplication::processEvents();
   const QImage shot = grab().toImage();
   bool ok = shot.save(path, "PNG");
-  QJsonObject report;
-  QJsonObject views;
-  for (auto it = views_.begin(); it != views_.end(); ++it) {
-    QJsonObject v;
-    v["width"] = it.value()->image().width();
-    v["height"] = it.value()->image().height();
-    v["distinct_levels"] = it.value()->DistinctLevels();
-    v["visible"] = docks_[it.key()]->isVisible();
-    // On screen now (not behind another tab) and how large its picture is drawn there.
-    v["on_screen"] = !it.value()->visibleRegion().isEmpty();
-    v["shown"] = QJsonArray{it.value()->ImageRect().width(), it.value()->ImageRect().height()};
-    v["tabbed"] = !tabifiedDockWidgets(docks_[it.key()]).isEmpty();
-    views[it.key()] = v;
-  }
-  report["views"] = views;
-  const QImage v3 = view3d_->Capture();
-  QJsonObject v3d;
-  v3d["triangles"] = qint64(view3d_->mesh_triangles());
-  v3d["widget"] = QJsonArray{view3d_->width(), view3d_->height()};
-  {
-    ImageView probe("3d");
-    probe.SetImage(v3, {});
-    v3d["distinct_levels"] = probe.DistinctLevels();
-  }
-  v3d["width"] = v3.width();
-  v3d["height"] = v3.height();
-  report["view3d"] = v3d;
-  report["frames_processed"] = latest_ ? latest_->report.index + 1 : 0;
-  // The scan's rate as the studio ran it (frames between the first and the last snapshot over
-  // that time), and how often the 3-D view's surface was refreshed meanwhile.
-  const double scan_s = double(scan_last_ms_ - scan_first_ms_) / 1000.0;
-  report["scan_seconds"] = scan_s;
-  report["scan_fps"] = scan_s > 0 ? double(scan_last_frame_ - scan_first_frame_) / scan_s : 0.0;
-  report["mesh_updates"] = mesh_updates_;
-  report["mesh_updates_per_s"] = scan_s > 0 ? double(mesh_updates_in_scan_) / scan_s : 0.0;
-  report["frames_shown"] = frames_shown_;
-  // Where the window's time went, and every thread's CPU (the scan's, the window's, the
-  // mesher's, software OpenGL's).
-  QJsonObject display;
-  display["views_cpu_ms"] = views_ms_;
-  display["views_interval_ms"] = pacer_.interval_ms();
-  display["mesh_handover_cpu_ms"] = mesh_handover_ms_;
-  display["preview_step"] = preview_.step();  // the surface's lattice while the scan ran (last)
-  display["redraws"] = view3d_->redraws();
-  display["redraw_ms"] = view3d_->redraw_ms();
-  report["display"] = display;
-  report["cpu_seconds_by_thread"] = CpuSecondsByThread();
-  report["health"] = health_->text();
-  report["error"] = error_->text();
-  // The error shown whole: its label as tall as its text needs at its width, and inside the
-  // status panel.
-  if (error_->isVisible()) {
-    const QRect in_panel(error_->mapTo(docks_["status"], QPoint(0, 0)), error_->size());
-    report["error_fits"] = error_->height() >= error_->heightForWidth(error_->width()) &&
-                           docks_["status"]->rect().contains(in_panel);
-  }
-  report["window"] = QJsonArray{shot.width(), shot.height()};
-  if (const QScreen* screen = QGuiApplication::primaryScreen())
-    report["screen"] = QJsonArray{screen->availableGeometry().width(), screen->availableGeometry().height()};
-  // The controls panel shows its content whole (never cut at the right).
-  if (auto* area = qobject_cast<QScrollArea*>(docks_["controls"]->widget()))
-    report["controls_fit"] = area->viewport()->width() >= area->widget()->minimumSizeHint().width();
-  report["language"] = qApp->property("hdrf_language").toString();
+  const QJsonObject report = DescribeWindow(*this, shot.size());
   QFile f(path + ".json");
   ok = ok && f.open(QIODevice::WriteOnly) && f.write(QJsonDocument(report).toJson()) > 0;
   return ok;

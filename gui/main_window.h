@@ -8,11 +8,13 @@
 #include <QMap>
 #include <QThread>
 #include <array>
+#include <optional>
 #include <memory>
 
 #include "gui/display_pacer.h"
 #include "gui/preview_detail.h"
 #include "gui/scan_worker.h"
+#include "gui/stage_views.h"
 #include "gui/tone_mapper.h"
 #include "sensors/openni_camera.h"
 
@@ -34,10 +36,10 @@ namespace hdrf::gui {
 
 class SettingsForm;
 class SensorPanel;
+class StatusPanel;
 
 class ImageView;
 class VtkView;
-class ExposurePlot;
 
 struct StudioOptions {
   QString source;            // empty: the last one used (default: the synthetic room)
@@ -70,6 +72,21 @@ class MainWindow : public QMainWindow {
   int frames_shown() const { return frames_shown_; }
   QString health_text() const;
   QString error_text() const;
+  std::optional<bool> error_fits() const;  // the error shown whole (none shown: nullopt)
+  QStringList view_names() const { return views_.keys(); }
+  // How the scan ran as the window saw it and what the window's own work cost (the studio's
+  // benchmark and the screenshot's JSON read it: gui/window_report.h): the scan's frames and
+  // time between its first and last snapshot, the 3-D view's mesh updates (all, and in that
+  // time), and milliseconds of the window thread's CPU in the 2-D views' refreshes and in
+  // handing surfaces to the 3-D view.
+  struct DisplayStats {
+    qint64 scan_first_ms = -1, scan_last_ms = -1;
+    int scan_first_frame = -1, scan_last_frame = -1, mesh_updates = 0, mesh_updates_in_scan = 0;
+    double views_ms = 0, mesh_handover_ms = 0;
+  };
+  const DisplayStats& display_stats() const { return stats_; }
+  double views_interval_ms() const { return pacer_.interval_ms(); }
+  int preview_step() const { return preview_.step(); }
   ScanSettings CurrentSettings() const;
   // File > Export > Textured HDR asset: the dialog (one at a time), wired to the worker.
   class ExportDialog* OpenExportDialog();
@@ -121,14 +138,9 @@ class MainWindow : public QMainWindow {
   void Render(bool now = false);
   void UpdateMesh();  // the latest surface into the 3-D view, a few times a second
   void TellShownViews();  // which stage images the views on screen need, to the worker
-  void RenderColourAndDepth(const std::shared_ptr<const Snapshot>& s);
   void RenderPreview(const std::shared_ptr<const Snapshot>& s);
   void RenderSnapshot(const std::shared_ptr<const Snapshot>& s);  // the views of one scan snapshot
-  void RenderStatus(const std::shared_ptr<const Snapshot>& s);    // its status panel
-  static QString StatusKey(const Snapshot& s);                   // what the panel shows at once
   void OnFailed(const QString& message);
-  void ShowError(const QString& message);  // in the status panel, in place of the stage times
-  void HideError();
   void ApplyEngineSettings();
   void FinishScripted();
   void OfferRecovery();
@@ -148,39 +160,28 @@ class MainWindow : public QMainWindow {
   bool mesh_latest_last_ = false;  // mesh_latest_ is the surface at the scan's stop
   bool mesh_shown_last_ = false;   // mesh_shown_ is (a preview while scanning, when false)
   qint64 mesh_time_ms_ = 0;
-  // What the studio's benchmark reads (the screenshot's JSON): the scan's frames and time
-  // between its first and last snapshot, and the 3-D view's mesh updates in that time.
-  qint64 scan_first_ms_ = -1, scan_last_ms_ = -1;
-  int scan_first_frame_ = -1, scan_last_frame_ = -1, mesh_updates_ = 0, mesh_updates_in_scan_ = 0;
   bool finish_on_last_mesh_ = false;
   QTimer* render_timer_ = nullptr;
   QMap<QString, ImageView*> views_;
   QMap<QString, QDockWidget*> docks_;
+  StageViews stage_views_{views_, docks_};  // fills views_ and their docks in docks_
   VtkView* view3d_ = nullptr;
   QAction* full_detail_ = nullptr;  // View: full surface detail while scanning
   PreviewDetail preview_;  // the surface's detail while scanning
-  ExposurePlot* plot_ = nullptr;
   QComboBox* source_ = nullptr;
   class TonePanel* tone_panel_ = nullptr;
   SettingsForm* engine_ = nullptr;  // generated from the settings registry
   SensorPanel* sensor_panel_ = nullptr;
   std::unique_ptr<sensors::HotplugMonitor> hotplug_;  // events come on OpenNI2's threads
   QPushButton *start_ = nullptr, *pause_ = nullptr, *stop_ = nullptr, *reset_ = nullptr;
-  QLabel *reloc_hint_ = nullptr, *reloc_caption_ = nullptr;
-  QWidget* stages_ = nullptr;                                  // the stage times' grid
-  std::array<QLabel*, 7> stage_ms_{};                          // its six stages and the total
-  QLabel *health_ = nullptr, *memory_ = nullptr, *error_ = nullptr, *frames_label_ = nullptr;
+  StatusPanel* status_ = nullptr;
   // The status panel while scanning: a change of the tracking's state (a loss, a warning) at
   // once, its figures (frame, times, memory) at most every kStatusMs (text no one can read
   // at the scan's rate costs the window's thread a text layout a frame).
   static constexpr int kStatusMs = 200;
   qint64 status_ms_ = 0;
-  QString status_key_;
-  int reloc_hint_frame_ = -1;
   int frames_shown_ = 0;
-  // What the window's own work cost during the session (the benchmark's breakdown): the 2-D
-  // views' refreshes and the surfaces handed to the 3-D view, milliseconds of this thread's CPU.
-  double views_ms_ = 0, mesh_handover_ms_ = 0;
+  DisplayStats stats_;
   // The 2-D views' refresh while scanning: the window's thread under kWindowShare of the
   // machine (its other work, the 3-D view's redraws, counts against it too).
   static constexpr double kWindowShare = 0.03;

@@ -1534,34 +1534,6 @@ Open it to continue or export it?</source>
         <translation>Später</translation>
     </message>
     <message>
-        <source>Colour (as delivered)</source>
-        <translation>Farbe (wie geliefert)</translation>
-    </message>
-    <message>
-        <source>Depth</source>
-        <translation>Tiefe</translation>
-    </message>
-    <message>
-        <source>Radiance (tone-mapped)</source>
-        <translation>Radianz (tonemapped)</translation>
-    </message>
-    <message>
-        <source>Normalized radiance</source>
-        <translation>Normalisierte Radianz</translation>
-    </message>
-    <message>
-        <source>Confidence (PCF)</source>
-        <translation>Konfidenz (PCF)</translation>
-    </message>
-    <message>
-        <source>Model radiance (ray cast)</source>
-        <translation>Modellradianz (Raycast)</translation>
-    </message>
-    <message>
-        <source>Model normals (ray cast)</source>
-        <translation>Modellnormalen (Raycast)</translation>
-    </message>
-    <message>
         <source>Source</source>
         <translation>Quelle</translation>
     </message>
@@ -1600,14 +1572,6 @@ Open it to continue or export it?</source>
     <message>
         <source>Controls</source>
         <translation>Steuerung</translation>
-    </message>
-    <message>
-        <source>No frame yet</source>
-        <translation>Noch kein Bild</translation>
-    </message>
-    <message>
-        <source>Tracking: -</source>
-        <translation>Tracking: -</translation>
     </message>
     <message>
         <source>Status</source>
@@ -1754,126 +1718,6 @@ Open it to continue or export it?</source>
         <translation>Engine-Einstellungen: %1</translation>
     </message>
     <message>
-        <source>Live preview (not scanning); the model holds %1 frames</source>
-        <translation>Live-Vorschau (kein Scan); das Modell enthält %1 Bilder</translation>
-    </message>
-    <message>
-        <source>Live preview (not scanning)</source>
-        <translation>Live-Vorschau (kein Scan)</translation>
-    </message>
-    <message>
-        <source>std</source>
-        <translation>Std.-Abw.</translation>
-    </message>
-    <message>
-        <source>PCF</source>
-        <translation>PCF</translation>
-    </message>
-    <message>
-        <source>Frame %1%2 on the %3</source>
-        <translation>Bild %1%2 auf der %3</translation>
-    </message>
-    <message>
-        <source>%1 % of the view lies beyond %L2 m, past the model&apos;s ray cast: tracking uses nearer surfaces (volume.raycast_far_m)</source>
-        <translation>%1 % der Ansicht liegen weiter als %L2 m, jenseits des Raycasts des Modells: das Tracking nutzt nähere Flächen (volume.raycast_far_m)</translation>
-    </message>
-    <message>
-        <source>WAITING: %1</source>
-        <translation>WARTET: %1</translation>
-    </message>
-    <message>
-        <source>TRACKING LOST: %1 (frame not fused)</source>
-        <translation>TRACKING VERLOREN: %1 (Bild nicht fusioniert)</translation>
-    </message>
-    <message>
-        <source>FOUND AGAIN, CONFIRMING: %1 (frame not fused)</source>
-        <translation>WIEDERGEFUNDEN, WIRD BESTÄTIGT: %1 (Bild nicht fusioniert)</translation>
-    </message>
-    <message>
-        <source>Tracking quality %1 %: SLOW DOWN (%2 % of pixels matched)</source>
-        <translation>Tracking-Qualität %1 %: LANGSAMER BEWEGEN (%2 % der Pixel zugeordnet)</translation>
-    </message>
-    <message>
-        <source>Tracking quality %1 % (%2 % of pixels matched)</source>
-        <translation>Tracking-Qualität %1 % (%2 % der Pixel zugeordnet)</translation>
-    </message>
-    <message>
-        <source>Relocalised from an earlier view</source>
-        <translation>Aus einer früheren Ansicht relokalisiert</translation>
-    </message>
-    <message>
-        <source>The scan&apos;s view at frame %1</source>
-        <translation>Die Ansicht des Scans bei Bild %1</translation>
-    </message>
-    <message>
-        <source>Point the camera where the scan saw this (frame %1):</source>
-        <translation>Richten Sie die Kamera dorthin, wo der Scan dies sah (Bild %1):</translation>
-    </message>
-    <message>
-        <source>convert</source>
-        <translation>Umrechnen</translation>
-    </message>
-    <message>
-        <source>normalize</source>
-        <translation>Normalisieren</translation>
-    </message>
-    <message>
-        <source>track</source>
-        <translation>Tracken</translation>
-    </message>
-    <message>
-        <source>compensate</source>
-        <translation>Ausgleichen</translation>
-    </message>
-    <message>
-        <source>integrate</source>
-        <translation>Integrieren</translation>
-    </message>
-    <message>
-        <source>ray cast</source>
-        <translation>Raycast</translation>
-    </message>
-    <message>
-        <source>total</source>
-        <translation>gesamt</translation>
-    </message>
-    <message>
-        <source>%L1 ms (%L2 frames/s)</source>
-        <translation>%L1 ms (%L2 Bilder/s)</translation>
-    </message>
-    <message>
-        <source>Volume: %L1 of %L2 MiB in %3 bricks</source>
-        <translation>Volumen: %L1 von %L2 MiB in %3 Bricks</translation>
-    </message>
-    <message>
-        <source>GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)</source>
-        <translation>GPU: %L1 von %L2 MiB, %3 Bricks; Hauptspeicher: %4 Bricks (%5 ausgelagert, %6 zurückgeholt)</translation>
-    </message>
-    <message>
-        <source>VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and exported.</source>
-        <translation>VOLUMEN VOLL: %1. Neue Flächen werden nicht hinzugefügt; das Modell bleibt erhalten und kann gespeichert und exportiert werden.</translation>
-    </message>
-    <message>
-        <source>depth %L1 m</source>
-        <translation>Tiefe %L1 m</translation>
-    </message>
-    <message>
-        <source>no depth</source>
-        <translation>keine Tiefe</translation>
-    </message>
-    <message>
-        <source>PCF %L1 (max channel %L2)</source>
-        <translation>PCF %L1 (größter Kanal %L2)</translation>
-    </message>
-    <message>
-        <source>normal %L1 %L2 %L3, depth %L4 m</source>
-        <translation>Normale %L1 %L2 %L3, Tiefe %L4 m</translation>
-    </message>
-    <message>
-        <source>no surface</source>
-        <translation>keine Fläche</translation>
-    </message>
-    <message>
         <source>A sequence folder, a recording FILE.oni, a live camera openni:device=SERIAL,mode=vga (the Live camera panel fills it in), or synthetic:key=value,... (keys scene=, seed=, frames=, ae=, exposure=, size=)</source>
         <translation>Ein Sequenzordner, eine Aufnahme DATEI.oni, eine Live-Kamera openni:device=SERIENNUMMER,mode=vga (das Live-Kamera-Panel trägt sie ein) oder synthetic:schlüssel=wert,... (Schlüssel scene=, seed=, frames=, ae=, exposure=, size=)</translation>
     </message>
@@ -1896,10 +1740,6 @@ Open it to continue or export it?</source>
     <message>
         <source>Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, a quarter of the triangles; every fourth where the display cannot draw that quickly), which leaves more of the processor to the scan; the whole surface follows when the scan stops</source>
         <translation>Aus: Während ein Scan läuft, zeigt die 3-D-Ansicht eine gröbere Oberfläche (aus jedem zweiten Voxel, ein Viertel der Dreiecke; aus jedem vierten, wo die Anzeige nicht so schnell zeichnen kann), die dem Scan mehr vom Prozessor lässt; die ganze Oberfläche folgt, wenn der Scan anhält</translation>
-    </message>
-    <message>
-        <source>%L1 ms</source>
-        <translation>%L1 ms</translation>
     </message>
 </context>
 <context>
@@ -2341,6 +2181,172 @@ Open it to continue or export it?</source>
     <message>
         <source>not available: “%1”</source>
         <translation>nicht verfügbar: „%1“</translation>
+    </message>
+</context>
+<context>
+    <name>hdrf::gui::StageViews</name>
+    <message>
+        <source>Colour (as delivered)</source>
+        <translation>Farbe (wie geliefert)</translation>
+    </message>
+    <message>
+        <source>Depth</source>
+        <translation>Tiefe</translation>
+    </message>
+    <message>
+        <source>Radiance (tone-mapped)</source>
+        <translation>Radianz (tonemapped)</translation>
+    </message>
+    <message>
+        <source>Normalized radiance</source>
+        <translation>Normalisierte Radianz</translation>
+    </message>
+    <message>
+        <source>Confidence (PCF)</source>
+        <translation>Konfidenz (PCF)</translation>
+    </message>
+    <message>
+        <source>Model radiance (ray cast)</source>
+        <translation>Modellradianz (Raycast)</translation>
+    </message>
+    <message>
+        <source>Model normals (ray cast)</source>
+        <translation>Modellnormalen (Raycast)</translation>
+    </message>
+    <message>
+        <source>depth %L1 m</source>
+        <translation>Tiefe %L1 m</translation>
+    </message>
+    <message>
+        <source>no depth</source>
+        <translation>keine Tiefe</translation>
+    </message>
+    <message>
+        <source>std</source>
+        <translation>Std.-Abw.</translation>
+    </message>
+    <message>
+        <source>PCF</source>
+        <translation>PCF</translation>
+    </message>
+    <message>
+        <source>PCF %L1 (max channel %L2)</source>
+        <translation>PCF %L1 (größter Kanal %L2)</translation>
+    </message>
+    <message>
+        <source>normal %L1 %L2 %L3, depth %L4 m</source>
+        <translation>Normale %L1 %L2 %L3, Tiefe %L4 m</translation>
+    </message>
+    <message>
+        <source>no surface</source>
+        <translation>keine Fläche</translation>
+    </message>
+</context>
+<context>
+    <name>hdrf::gui::StatusPanel</name>
+    <message>
+        <source>No frame yet</source>
+        <translation>Noch kein Bild</translation>
+    </message>
+    <message>
+        <source>Tracking: -</source>
+        <translation>Tracking: -</translation>
+    </message>
+    <message>
+        <source>convert</source>
+        <translation>Umrechnen</translation>
+    </message>
+    <message>
+        <source>normalize</source>
+        <translation>Normalisieren</translation>
+    </message>
+    <message>
+        <source>track</source>
+        <translation>Tracken</translation>
+    </message>
+    <message>
+        <source>compensate</source>
+        <translation>Ausgleichen</translation>
+    </message>
+    <message>
+        <source>integrate</source>
+        <translation>Integrieren</translation>
+    </message>
+    <message>
+        <source>ray cast</source>
+        <translation>Raycast</translation>
+    </message>
+    <message>
+        <source>total</source>
+        <translation>gesamt</translation>
+    </message>
+    <message>
+        <source>Frame %1%2 on the %3</source>
+        <translation>Bild %1%2 auf der %3</translation>
+    </message>
+    <message>
+        <source>%1 % of the view lies beyond %L2 m, past the model&apos;s ray cast: tracking uses nearer surfaces (volume.raycast_far_m)</source>
+        <translation>%1 % der Ansicht liegen weiter als %L2 m, jenseits des Raycasts des Modells: das Tracking nutzt nähere Flächen (volume.raycast_far_m)</translation>
+    </message>
+    <message>
+        <source>WAITING: %1</source>
+        <translation>WARTET: %1</translation>
+    </message>
+    <message>
+        <source>TRACKING LOST: %1 (frame not fused)</source>
+        <translation>TRACKING VERLOREN: %1 (Bild nicht fusioniert)</translation>
+    </message>
+    <message>
+        <source>FOUND AGAIN, CONFIRMING: %1 (frame not fused)</source>
+        <translation>WIEDERGEFUNDEN, WIRD BESTÄTIGT: %1 (Bild nicht fusioniert)</translation>
+    </message>
+    <message>
+        <source>Tracking quality %1 %: SLOW DOWN (%2 % of pixels matched)</source>
+        <translation>Tracking-Qualität %1 %: LANGSAMER BEWEGEN (%2 % der Pixel zugeordnet)</translation>
+    </message>
+    <message>
+        <source>Tracking quality %1 % (%2 % of pixels matched)</source>
+        <translation>Tracking-Qualität %1 % (%2 % der Pixel zugeordnet)</translation>
+    </message>
+    <message>
+        <source>Relocalised from an earlier view</source>
+        <translation>Aus einer früheren Ansicht relokalisiert</translation>
+    </message>
+    <message>
+        <source>The scan&apos;s view at frame %1</source>
+        <translation>Die Ansicht des Scans bei Bild %1</translation>
+    </message>
+    <message>
+        <source>Point the camera where the scan saw this (frame %1):</source>
+        <translation>Richten Sie die Kamera dorthin, wo der Scan dies sah (Bild %1):</translation>
+    </message>
+    <message>
+        <source>%L1 ms</source>
+        <translation>%L1 ms</translation>
+    </message>
+    <message>
+        <source>%L1 ms (%L2 frames/s)</source>
+        <translation>%L1 ms (%L2 Bilder/s)</translation>
+    </message>
+    <message>
+        <source>Volume: %L1 of %L2 MiB in %3 bricks</source>
+        <translation>Volumen: %L1 von %L2 MiB in %3 Bricks</translation>
+    </message>
+    <message>
+        <source>GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)</source>
+        <translation>GPU: %L1 von %L2 MiB, %3 Bricks; Hauptspeicher: %4 Bricks (%5 ausgelagert, %6 zurückgeholt)</translation>
+    </message>
+    <message>
+        <source>VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and exported.</source>
+        <translation>VOLUMEN VOLL: %1. Neue Flächen werden nicht hinzugefügt; das Modell bleibt erhalten und kann gespeichert und exportiert werden.</translation>
+    </message>
+    <message>
+        <source>Live preview (not scanning); the model holds %1 frames</source>
+        <translation>Live-Vorschau (kein Scan); das Modell enthält %1 Bilder</translation>
+    </message>
+    <message>
+        <source>Live preview (not scanning)</source>
+        <translation>Live-Vorschau (kein Scan)</translation>
     </message>
 </context>
 <context>
