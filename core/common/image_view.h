@@ -17,7 +17,6 @@ struct ImageView {
 
   HDRF_HD T& operator()(int x, int y) const { return data[y * width + x]; }
   HDRF_HD T& operator[](int i) const { return data[i]; }
-  HDRF_HD bool Inside(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
   HDRF_HD int size() const { return width * height; }
   // A read-only view of the same pixels.
   template <typename U = T>

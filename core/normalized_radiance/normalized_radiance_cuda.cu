@@ -107,10 +107,6 @@ void RowPasses(par::Gpu d, ImageView<const float> cells, NrIntegrals in) {
   }
 }
 
-void LuminanceOnGpu(ImageView<const Float3> radiance, ImageView<float> lum) {
-  LuminanceOf(par::Gpu{}, radiance, lum);
-}
-
 void ClippedLuminanceOnGpu(ImageView<const Float3> radiance, Float3 clip, ImageView<float> lum) {
   ClippedLuminanceOf(par::Gpu{}, radiance, clip, lum);
 }

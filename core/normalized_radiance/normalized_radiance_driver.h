@@ -16,21 +16,16 @@ struct Scratch {
   NrIntegrals in;
 };
 
-// Luminance (Rec. 709) of a radiance image: what normalized radiance is computed on.
-template <typename Device>
-void LuminanceOf(Device d, ImageView<const Float3> radiance, ImageView<float> lum) {
-  par::ForEachPixel(d, radiance.width, radiance.height, HDRF_LAMBDA(int x, int y) { lum(x, y) = hdrf::Luminance(radiance(x, y)); });
-}
-
-// The live frame's luminance for tracking: as LuminanceOf, but 0 (no data) where any channel
-// of the pixel is clipped at 255, and the tracking weight there 0 too. A clipped pixel's
+// The live frame's luminance for tracking (Rec. 709, what normalized radiance is computed
+// on), 0 (no data) where any channel of the pixel is clipped at 255, and the tracking
+// weight there 0 too. A clipped pixel's
 // radiance is only a lower bound that moves with the exposure (a window, a lamp): inside a
 // patch's statistics it shifts the normalized radiance of the unclipped pixels beside it,
 // while the model's ray cast has no such pixels (a window has no depth), so the photometric
 // term pulls the pose across the clipped region's border. Kept out, both sides normalize
-// over the same kind of pixels. (Keeping the clipped pixels' values, normalized by their
-// unclipped surround, was tried: their large values beside the border, where the tracker
-// samples and differentiates the image, undid the gain on the 1000-frame room runs.)
+// over the same kind of pixels. (The clipped pixels' values, normalized by their unclipped
+// surround, would be large beside the border, where the tracker samples and differentiates
+// the image.)
 HDRF_HD bool PixelClipped(Rgb8 c) { return c.r == 255 || c.g == 255 || c.b == 255; }
 template <typename Device>
 void TrackingLuminanceOf(Device d, ImageView<const Rgb8> color, ImageView<const Float3> radiance,
@@ -89,7 +84,6 @@ void Normalize(Device d, ImageView<const float> lum, const Scratch& s, const Nor
 }
 
 // The same drivers on the GPU (normalized_radiance_cuda.cu), over device views.
-void LuminanceOnGpu(ImageView<const Float3> radiance, ImageView<float> lum);
 void ClippedLuminanceOnGpu(ImageView<const Float3> radiance, Float3 clip, ImageView<float> lum);
 void TrackingLuminanceOnGpu(ImageView<const Rgb8> color, ImageView<const Float3> radiance,
                             ImageView<const float> confidence, ImageView<float> lum, ImageView<float> weight);
