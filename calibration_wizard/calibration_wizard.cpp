@@ -1,5 +1,5 @@
 #include "calibration_wizard/calibration_wizard.h"
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 
 #include <QDir>
 #include <QGuiApplication>
@@ -49,7 +49,7 @@ bool CalibrationWizard::RunTask(std::function<void()> work, std::function<void(c
     try {
       work();
     } catch (const std::exception& e) {
-      *error = EngineText(std::string(e.what()));  // the engine's wordings translated
+      *error = language::EngineText(std::string(e.what()));  // the engine's wordings translated
       if (error->isEmpty()) *error = tr("failed (no message)");
     }
   });

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
@@ -190,7 +190,7 @@ void ScanWorker::OpenProject(const QString& path) {
     settings_.pipeline = job_->session().pipeline().options();
     if (!p.source_spec.empty()) settings_.source = p.source_spec;
     QString msg = tr("Opened %1: %2 frames").arg(path).arg(job_->session().frames());
-    if (!job_->notice().empty()) msg += " — " + wizard::EngineText(job_->notice());
+    if (!job_->notice().empty()) msg += " — " + language::EngineText(job_->notice());
     const QString src = QString::fromStdString(p.source);
     try {
       if (p.source_spec.empty()) throw Error("the project does not say how its source was opened");
@@ -289,10 +289,10 @@ void ScanWorker::Configure(const ScanSettings& s) {
     QString msg = tr("Ready: %1").arg(QString::fromStdString(source_->description()));
     if (live_) msg = tr("Live preview: %1 (Start scans)").arg(QString::fromStdString(source_->description()));
     const pipeline::Pipeline& pipe = job_->session().pipeline();
-    if (!pipe.device_note().empty()) msg += " — " + wizard::EngineText(pipe.device_note());
-    if (!pipe.settings_note().empty()) msg += " — " + wizard::EngineText(pipe.settings_note());
-    for (const std::string& w : source_->sensor().warnings) msg += " — " + wizard::EngineText(w);
-    if (!job_->notice().empty()) msg += " — " + wizard::EngineText(job_->notice());
+    if (!pipe.device_note().empty()) msg += " — " + language::EngineText(pipe.device_note());
+    if (!pipe.settings_note().empty()) msg += " — " + language::EngineText(pipe.settings_note());
+    for (const std::string& w : source_->sensor().warnings) msg += " — " + language::EngineText(w);
+    if (!job_->notice().empty()) msg += " — " + language::EngineText(job_->notice());
     emit stateChanged(false, msg);
     if (live_) {
       ListSensors();
@@ -743,7 +743,7 @@ void ScanWorker::ExportAsset(const QString& folder, const io::AssetOptions& opti
                        3 * r.preview.width(), QImage::Format_RGB888)
                     .copy();
     QString msg = tr("Wrote %1 files into %2: %3").arg(r.files.size()).arg(folder, QString::fromStdString(r.Summary()));
-    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(wizard::EngineText(w));
+    for (const std::string& w : r.warnings) msg += "\n" + tr("Note: %1").arg(language::EngineText(w));
     emit assetDone(true, msg, preview);
   } catch (const Cancelled&) {
     emit assetDone(false, tr("Export cancelled; the folder was left as it was"), {});

@@ -8,7 +8,7 @@
 #include <QStringList>
 #include <QVBoxLayout>
 
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 #include "gui/exposure_plot.h"
 #include "gui/stage_images.h"
 
@@ -107,7 +107,7 @@ void StatusPanel::Show(const Snapshot& snap) {
                                         .arg(s->raycast_far_m, 0, 'f', 1)
                           : QString();
   using pipeline::FrameState;
-  const QString why = wizard::EngineText(r.why);
+  const QString why = language::EngineText(r.why);
   if (r.state == FrameState::kWaiting) {
     health_->setText(tr("WAITING: %1").arg(why) + far);
     SetStyle(health_, "QLabel { color: white; background: #a07010; padding: 3px; font-weight: bold; }");

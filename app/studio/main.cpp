@@ -8,7 +8,7 @@
 #include <QTimer>
 #include <cstdio>
 
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
 
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   QCommandLineParser& p = cl.p;
   p.process(app);
   // The language before any window exists: widgets take their words when they are made.
-  if (!hdrf::wizard::StartInLanguage(app, p.isSet(cl.language), p.value(cl.language), "hdrfusion-studio")) return 2;
+  if (!hdrf::language::StartInLanguage(app, p.isSet(cl.language), p.value(cl.language), "hdrfusion-studio")) return 2;
   const QCommandLineOption &source = cl.source, &frames = cl.frames, &device = cl.device, &shot = cl.shot,
                            &start = cl.start, &tone = cl.tone, &project = cl.project, &no_recovery = cl.no_recovery;
   hdrf::gui::StudioOptions o;

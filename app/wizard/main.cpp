@@ -10,7 +10,7 @@
 #include <cstdio>
 
 #include "calibration_wizard/calibration_wizard.h"
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 
 namespace {
 
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   QCommandLineParser& p = c.p;
   p.process(app);
   // The language before any window exists: widgets take their words when they are made.
-  if (!hdrf::wizard::StartInLanguage(app, p.isSet(c.language), p.value(c.language), "hdrfusion-calibration-wizard")) return 2;
+  if (!hdrf::language::StartInLanguage(app, p.isSet(c.language), p.value(c.language), "hdrfusion-calibration-wizard")) return 2;
   hdrf::wizard::WizardSettings o;
   o.source = p.value(c.source);
   o.sweep_folder = p.value(c.sweep);

@@ -1,4 +1,4 @@
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 
 #include <QCoreApplication>
 #include <QDir>
@@ -12,7 +12,7 @@
 #include "common/error.h"
 #include "common/message.h"
 
-namespace hdrf::wizard {
+namespace hdrf::language {
 
 namespace {
 constexpr const char* kPrefix = ":/i18n";
@@ -129,4 +129,4 @@ QString InstallTranslation(QCoreApplication& app, const QString& code) {
   return chosen;
 }
 
-}  // namespace hdrf::wizard
+}  // namespace hdrf::language

@@ -1,6 +1,7 @@
 // The programs' language: English in the sources, German from translations/hdrfusion_de.ts
 // (compiled into the programs' resources), Qt's own dialogs and buttons from Qt's
-// translations. Used by the studio and the calibration wizard alike.
+// translations. A library of its own (hdrfusion_language), used by the studio and the
+// calibration wizard alike.
 #pragma once
 
 #include <QCoreApplication>
@@ -10,7 +11,7 @@
 
 class QCoreApplication;
 
-namespace hdrf::wizard {
+namespace hdrf::language {
 
 // The languages the programs speak, as ISO 639-1 codes: "en" and every compiled translation.
 QStringList AvailableLanguages();
@@ -41,4 +42,4 @@ QString EngineText(const std::string& message);
 inline QString EngineText(const QString& message) { return EngineText(message.toStdString()); }
 inline QString EngineText(const char* message) { return EngineText(std::string(message ? message : "")); }
 
-}  // namespace hdrf::wizard
+}  // namespace hdrf::language

@@ -35,7 +35,7 @@
 #include <string>
 
 #include "calibration_wizard/calibration_wizard.h"
-#include "calibration_wizard/translation.h"
+#include "gui/language/language.h"
 #include "common/message.h"
 #include "gui/main_window.h"
 #include "gui/registry_words.h"
@@ -169,12 +169,12 @@ TEST(Translations, EngineMessagesAreShownInGerman) {
   }
   // Numbers: decimal commas, units kept.
   const std::string residual = Say(words::kIcpResidualHigh, {Num(3.14159, 1), Num(2.5, 1), Num(0.75, 2)});
-  EXPECT_EQ(wizard::EngineText(residual),
+  EXPECT_EQ(language::EngineText(residual),
             QStringLiteral("Punkt-zu-Fläche-Fehler 3,1 cm, 2,5-mal so groß wie die für diesen Scan üblichen 0,75 cm"));
-  EXPECT_EQ(wizard::EngineText(Say(words::kConfirmingPose, {"1", "3"})),
+  EXPECT_EQ(language::EngineText(Say(words::kConfirmingPose, {"1", "3"})),
             QStringLiteral("bestätige die Pose nach einem Verlust (1 von 3 Bildern)"));
   // The note the studio's status line gives where small frames lowered the pyramid levels.
-  EXPECT_EQ(wizard::EngineText(Say(words::kLevelsLowered, {"3", "2", "160", "120", "80", "60"})),
+  EXPECT_EQ(language::EngineText(Say(words::kLevelsLowered, {"3", "2", "160", "120", "80", "60"})),
             QStringLiteral("tracker.levels von 3 auf 2 gesenkt für Bilder von 160x120 (eine Pyramidenstufe unter "
                            "80x60 Pixeln führt den Tracker in die Irre)"));
   // A failed capture step: the failure and the advice are messages themselves; the folder
@@ -182,13 +182,13 @@ TEST(Translations, EngineMessagesAreShownInGerman) {
   const std::string failure = Say(words::kFlicker, {"12"});
   const std::string capture = Say(words::kCaptureFailed, {Sig(12.5), "4", "9", failure, "3", Say(words::kAdviceFlicker),
                                                           "3", "/tmp/sweep %2: x"});
-  const QString shown = wizard::EngineText(capture);
+  const QString shown = language::EngineText(capture);
   EXPECT_EQ(shown, QStringLiteral("Bei 12,5 ms (Schritt 4 von 9): die Helligkeit änderte sich zwischen den "
                                   "Wiederholungen um 12 %: flackerndes Licht, 3-mal in Folge. Leuchtstofflampen "
                                   "oder gedimmte LED-Lampen ausschalten (oder Tageslicht nutzen), dann fortsetzen. "
                                   "Die 3 bisher aufgenommenen Schritte bleiben in /tmp/sweep %2: x erhalten."));
   // Not one of the engine's wordings: quoted as the engine wrote it, control characters escaped.
-  EXPECT_EQ(wizard::EngineText(std::string("/data/seq/rgb.txt:3: expected 'timestamp filename'\x1b")),
+  EXPECT_EQ(language::EngineText(std::string("/data/seq/rgb.txt:3: expected 'timestamp filename'\x1b")),
             QStringLiteral("„/data/seq/rgb.txt:3: expected 'timestamp filename'\\x1b“"));
 }
 
@@ -368,7 +368,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusionTest");
   QApplication::setApplicationName("TranslationTests");
-  if (hdrf::wizard::InstallTranslation(app, QStringLiteral("de")) != QLatin1String("de")) {
+  if (hdrf::language::InstallTranslation(app, QStringLiteral("de")) != QLatin1String("de")) {
     std::fprintf(stderr, "the German translation is not in the resources (:/i18n)\n");
     return 1;
   }
