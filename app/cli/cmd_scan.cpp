@@ -70,18 +70,93 @@ class FrameNarrator {
   bool far_said_ = false;
 };
 
+struct ScanArgs {
+  std::string source, out, options, response;
+  int max_frames = 0;
+  std::string tone = "mantiuk08";
+  bool frame_to_frame = false;
+  std::string save, resume;
+  double autosave_s = 60;
+};
+
+// The scan job: a new one, or the saved project continued from SOURCE (refused where SOURCE
+// has another camera or no frame left).
+std::unique_ptr<jobs::ScanJob> MakeJob(const ScanArgs& a, const std::optional<io::Project>& project,
+                                       const pipeline::PipelineOptions& o, pipeline::FrameSource& source,
+                                       const fs::path& save) {
+  std::unique_ptr<jobs::ScanJob> job;
+  if (project) {
+    job = std::make_unique<jobs::ScanJob>(*project, [&](pipeline::PipelineOptions& po) { po = o; },
+                                          save.stem().string(), a.autosave_s);
+    const int scanned = project->resume.frames;
+    switch (job->Continue(*project, source, a.source)) {
+      case jobs::ContinueFrom::kOtherCamera: {
+        const PinholeCamera& pc = project->sensor.camera;
+        const PinholeCamera& sc = source.sensor().camera;
+        throw InputError(a.resume, "the project was scanned with a " + std::to_string(pc.width) + "x" +
+                                        std::to_string(pc.height) + " camera (fx " + std::to_string(pc.fx) +
+                                        "), SOURCE has a " + std::to_string(sc.width) + "x" +
+                                        std::to_string(sc.height) + " one (fx " + std::to_string(sc.fx) +
+                                        "): a scan goes on with the camera it began with");
+      }
+      case jobs::ContinueFrom::kNothingLeft:
+        throw InputError(a.resume, "holds " + std::to_string(scanned) + " frames, more than " +
+                                        source.description() + " has: nothing left to scan");
+      case jobs::ContinueFrom::kAfterScanned:
+        std::fprintf(stderr, "scan: resuming %s after its %d frames\n", a.resume.c_str(), scanned);
+        break;
+      case jobs::ContinueFrom::kFirstFrame:
+        std::fprintf(stderr, "scan: resuming %s (%d frames) from the first frame of %s: it must start where the "
+                               "scan stopped (the tracker starts from the last pose)\n",
+                     a.resume.c_str(), scanned, source.description().c_str());
+        break;
+    }
+  } else {
+    job = std::make_unique<jobs::ScanJob>(o, source.sensor(), save.stem().string(), a.autosave_s);
+    job->SetSource(source.description(), a.source);
+  }
+  return job;
+}
+
+// What the job and the engine say before the first frame (recovery files pruned, the device
+// chosen, settings lowered for the frame size, a GPU budget on the CPU).
+void SayNotes(jobs::ScanJob& job, const pipeline::PipelineOptions& o) {
+  pipeline::Pipeline& pipe = job.session().pipeline();
+  if (!job.notice().empty()) std::fprintf(stderr, "scan: %s\n", job.notice().c_str());
+  if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
+  if (!pipe.settings_note().empty()) std::fprintf(stderr, "scan: note: %s\n", pipe.settings_note().c_str());
+  if (o.volume.gpu_memory_mb > 0 && pipe.device() != Device::kCuda)
+    std::fprintf(stderr, "scan: note: volume.gpu_memory_mb applies on the GPU; on the CPU the whole model stays in "
+                         "host memory (volume.max_memory_mb)\n");
+}
+
+// Up to `total` frames through the job, each told, autosaving between frames; true where an
+// interrupt stopped it. A frame's exception ends the loop with its message in `failure`.
+bool RunFrames(jobs::ScanJob& job, pipeline::FrameSource& source, int total, const pipeline::PipelineOptions& o,
+               const StopOnInterrupt& stop, Progress& progress, std::string* failure) {
+  try {
+    FrameNarrator narrator(o.volume.raycast_far_m);
+    pipeline::FrameInput f;
+    bool autosave_failed = false;
+    for (int i = 0; i < total && source.Next(f); ++i) {
+      narrator.Tell(job.Process(f));
+      progress.Step();
+      if (const std::string e = job.Autosave(); !e.empty() && !autosave_failed) {
+        std::fprintf(stderr, "\nscan: warning: autosave failed: %s (the scan goes on)\n", e.c_str());
+        autosave_failed = true;
+      }
+      if (stop.raised()) return true;
+    }
+  } catch (const std::exception& e) {
+    *failure = e.what();
+  }
+  return false;
+}
+
 }  // namespace
 
 Command AddScanCommand(CLI::App& app) {
-  struct Args {
-    std::string source, out, options, response;
-    int max_frames = 0;
-    std::string tone = "mantiuk08";
-    bool frame_to_frame = false;
-    std::string save, resume;
-    double autosave_s = 60;
-  };
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<ScanArgs>();
   auto* cmd = app.add_subcommand("scan", "Track, fuse and mesh a sequence or the synthetic sensor");
   cmd->add_option("SOURCE", a->source, "Sequence folder, synthetic:[scene=room,seed=1,frames=300,ae=smooth,size=320x240], "
                   "openni:[device=URI|SERIAL,mode=vga|qvga,ae=on|off,awb=on|off,exposure=MS,gain=N,frames=N] "
@@ -143,45 +218,10 @@ Command AddScanCommand(CLI::App& app) {
         break;
       }
     // Autosaves go to a recovery file named after the project and the start time.
-    std::unique_ptr<jobs::ScanJob> job;
-    if (project) {
-      job = std::make_unique<jobs::ScanJob>(*project, [&](pipeline::PipelineOptions& po) { po = o; },
-                                            save.stem().string(), a->autosave_s);
-      const int scanned = project->resume.frames;
-      switch (job->Continue(*project, *source, a->source)) {
-        case jobs::ContinueFrom::kOtherCamera: {
-          const PinholeCamera& pc = project->sensor.camera;
-          const PinholeCamera& sc = source->sensor().camera;
-          throw InputError(a->resume, "the project was scanned with a " + std::to_string(pc.width) + "x" +
-                                          std::to_string(pc.height) + " camera (fx " + std::to_string(pc.fx) +
-                                          "), SOURCE has a " + std::to_string(sc.width) + "x" +
-                                          std::to_string(sc.height) + " one (fx " + std::to_string(sc.fx) +
-                                          "): a scan goes on with the camera it began with");
-        }
-        case jobs::ContinueFrom::kNothingLeft:
-          throw InputError(a->resume, "holds " + std::to_string(scanned) + " frames, more than " +
-                                          source->description() + " has: nothing left to scan");
-        case jobs::ContinueFrom::kAfterScanned:
-          std::fprintf(stderr, "scan: resuming %s after its %d frames\n", a->resume.c_str(), scanned);
-          break;
-        case jobs::ContinueFrom::kFirstFrame:
-          std::fprintf(stderr, "scan: resuming %s (%d frames) from the first frame of %s: it must start where the "
-                                 "scan stopped (the tracker starts from the last pose)\n",
-                       a->resume.c_str(), scanned, source->description().c_str());
-          break;
-      }
-    } else {
-      job = std::make_unique<jobs::ScanJob>(o, source->sensor(), save.stem().string(), a->autosave_s);
-      job->SetSource(source->description(), a->source);
-    }
-    if (!job->notice().empty()) std::fprintf(stderr, "scan: %s\n", job->notice().c_str());
+    std::unique_ptr<jobs::ScanJob> job = MakeJob(*a, project, o, *source, save);
+    SayNotes(*job, o);
     pipeline::ScanSession& session = job->session();
     pipeline::Pipeline& pipe = session.pipeline();
-    if (!pipe.device_note().empty()) std::fprintf(stderr, "scan: %s\n", pipe.device_note().c_str());
-    if (!pipe.settings_note().empty()) std::fprintf(stderr, "scan: note: %s\n", pipe.settings_note().c_str());
-    if (o.volume.gpu_memory_mb > 0 && pipe.device() != Device::kCuda)
-      std::fprintf(stderr, "scan: note: volume.gpu_memory_mb applies on the GPU; on the CPU the whole model stays in "
-                           "host memory (volume.max_memory_mb)\n");
     const int left = source->size() < 0 ? -1 : source->size() - (job->same_source() ? job->continued_frames() : 0);
     const int total = a->max_frames > 0 ? (left < 0 ? a->max_frames : std::min(a->max_frames, left)) : left;
     if (total < 0)
@@ -190,35 +230,14 @@ Command AddScanCommand(CLI::App& app) {
                  source->description().c_str(), total, tracking::TrackerName(o.tracker.kind),
                  1000 * o.volume.voxel_m,
                  pipe.device() == Device::kCuda ? ("GPU: " + CudaDeviceDescription()).c_str() : "CPU");
-    std::string failure;
-    bool stopped = false;
     // Ctrl-C, SIGTERM or SIGHUP end the scan early (or cancel the writing of its outputs),
     // keeping the model it built in the recovery file.
     StopOnInterrupt stop;
     Progress progress("scan", total);
     // The loop's own time (reading the source included): the rate the studio is compared with.
     const auto loop_start = std::chrono::steady_clock::now();
-    {
-      try {
-        FrameNarrator narrator(o.volume.raycast_far_m);
-        pipeline::FrameInput f;
-        bool autosave_failed = false;
-        for (int i = 0; i < total && source->Next(f); ++i) {
-          narrator.Tell(job->Process(f));
-          progress.Step();
-          if (const std::string e = job->Autosave(); !e.empty() && !autosave_failed) {
-            std::fprintf(stderr, "\nscan: warning: autosave failed: %s (the scan goes on)\n", e.c_str());
-            autosave_failed = true;
-          }
-          if (stop.raised()) {
-            stopped = true;
-            break;
-          }
-        }
-      } catch (const std::exception& e) {
-        failure = e.what();
-      }
-    }
+    std::string failure;
+    const bool stopped = RunFrames(*job, *source, total, o, stop, progress, &failure);
     progress.Done();
     const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     const int n = session.frames();

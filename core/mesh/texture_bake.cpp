@@ -94,30 +94,74 @@ DepthImage RenderDepth(const Mesh& m, const Pose& T_world_camera, const PinholeC
   return std::move(Rasterize(m, T_world_camera, cam, false).depth);
 }
 
-BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views, const BakeOptions& o,
-                         const std::function<bool(double)>& progress) {
-  o.Check();
-  const auto tick = [&](double f) {
-    if (progress && !progress(f)) throw Cancelled();
-  };
-  const Mesh& m = atlas.mesh;
-  const int W = atlas.width, H = atlas.height;
-  BakedTexture out{RadianceImage(W, H), Image<std::uint8_t>(W, H, 0), Image<std::int32_t>(W, H, -1)};
-  if (m.triangles.empty()) return out;
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const BakeView& v = views[i];
-    if (!v.camera.Valid() || v.radiance.width() != v.camera.width || v.radiance.height() != v.camera.height ||
-        v.confidence.width() != v.camera.width || v.confidence.height() != v.camera.height)
-      throw Error("texture bake: view " + std::to_string(i) + " has images of another size than its camera");
+namespace {
+
+// The radiance of surface point p (normal n) from the candidate views that see it: the sum of
+// the samples' weighted radiance, their weight and the number of views that gave one.
+void SampleViews(const std::vector<ViewData>& vd, const BakeOptions& o, Float3 p, Float3 n,
+                 const std::vector<int>& cand, Float3& sum, float& wsum, int& count) {
+  const bool gaussian = o.sample_sigma_px > 0;
+  const float kernel = gaussian ? -0.5f / (o.sample_sigma_px * o.sample_sigma_px) : 0.0f;
+  for (int k : cand) {
+    const ViewData& d = vd[std::size_t(k)];
+    const PinholeCamera& cam = d.view->camera;
+    const Float3 pc = d.T_camera_world.Apply(p);
+    if (pc.z < 0.1f) continue;
+    const Float3 to_cam = d.centre - p;
+    const float dist = Length(to_cam);
+    const float cosv = Dot(n, to_cam) / dist;
+    if (cosv < o.min_cos) continue;
+    const Float2 px = cam.Project(pc);
+    const int mg = o.edge_margin_px, lim = std::max(mg, 1);
+    if (px.x < float(mg) || px.y < float(mg) || px.x > float(cam.width - 1 - lim) || px.y > float(cam.height - 1 - lim))
+      continue;
+    // The nearest surface there, and no depth edge within the margin.
+    const int xi = int(std::lround(px.x)), yi = int(std::lround(px.y));
+    const float tol = o.occlusion_tolerance + 0.01f * pc.z;
+    bool visible = true;
+    for (int dy = -mg; dy <= mg && visible; ++dy)
+      for (int dx = -mg; dx <= mg; ++dx) {
+        const float z = d.depth(xi + dx, yi + dy);
+        if (z == 0 || z < pc.z - tol) {
+          visible = false;
+          break;
+        }
+      }
+    if (!visible) continue;
+    // The four pixels around the point, each weighted by how near its centre is (a
+    // Gaussian of the distance in pixels): with several frames sampling the surface at
+    // different sub-pixel offsets, each texel leans on the samples taken nearest to it,
+    // which keeps edges sharper than averaging every frame's bilinear interpolation.
+    const int x0 = int(px.x), y0 = int(px.y);
+    const Image<float>& conf = d.view->confidence;
+    if (conf(x0, y0) <= 0 || conf(x0 + 1, y0) <= 0 || conf(x0, y0 + 1) <= 0 || conf(x0 + 1, y0 + 1) <= 0) continue;
+    const RadianceImage& L = d.view->radiance;
+    const float w = cosv * cosv / (pc.z * pc.z);
+    for (int yy = y0; yy <= y0 + 1; ++yy)
+      for (int xx = x0; xx <= x0 + 1; ++xx) {
+        const float dx = px.x - float(xx), dy = px.y - float(yy);
+        const float g = (gaussian ? std::exp(kernel * (dx * dx + dy * dy)) : (1 - std::fabs(dx)) * (1 - std::fabs(dy))) *
+                        conf(xx, yy) * w;
+        sum += L(xx, yy) * g;
+        wsum += g;
+      }
+    ++count;
   }
-  // 1. Surface texels: which triangle owns each texel centre.
+}
+
+// 1. Surface texels: which triangle owns each texel centre.
+void OwnTexels(const Atlas& atlas, BakedTexture& out) {
+  const Mesh& m = atlas.mesh;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
     RasterizeTriangle(atlas.texel[std::size_t(tri[0])], atlas.texel[std::size_t(tri[1])], atlas.texel[std::size_t(tri[2])],
-                      W, H, [&](int x, int y, float, float, float) { out.triangle(x, y) = std::int32_t(t); });
+                      atlas.width, atlas.height, [&](int x, int y, float, float, float) { out.triangle(x, y) = std::int32_t(t); });
   }
-  tick(0.05);
-  // 2. Depth buffers of the mesh from every view (occlusion).
+}
+
+// 2. Depth buffers of the mesh from every view (occlusion); progress from 0.05 to 0.4.
+std::vector<ViewData> ViewDepths(const Mesh& m, const std::vector<BakeView>& views,
+                                 const std::function<bool(double)>& progress) {
   std::vector<ViewData> vd(views.size());
   std::atomic<int> done{0};
   std::atomic<bool> cancelled{false};
@@ -135,58 +179,18 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
     if (progress && !progress(0.05 + 0.35 * double(done) / double(views.size()))) cancelled = true;
   }
   if (cancelled) throw Cancelled();
-  // 3. Every surface texel from the views that see it.
+  return vd;
+}
+
+// 3. Every surface texel from the views that see it (else from the volume's radiance);
+// progress from 0.4 to 0.9.
+void BakeSurface(const Atlas& atlas, const std::vector<ViewData>& vd, const BakeOptions& o,
+                 const std::function<bool(double)>& progress, BakedTexture& out) {
+  const Mesh& m = atlas.mesh;
+  const int W = atlas.width, H = atlas.height;
   const bool has_normals = m.normal.size() == m.position.size();
   const bool has_radiance = m.radiance.size() == m.position.size();
-  const bool gaussian = o.sample_sigma_px > 0;
-  const float kernel = gaussian ? -0.5f / (o.sample_sigma_px * o.sample_sigma_px) : 0.0f;
-  const auto sample = [&](Float3 p, Float3 n, const std::vector<int>& cand, Float3& sum, float& wsum, int& count) {
-    for (int k : cand) {
-      const ViewData& d = vd[std::size_t(k)];
-      const PinholeCamera& cam = d.view->camera;
-      const Float3 pc = d.T_camera_world.Apply(p);
-      if (pc.z < 0.1f) continue;
-      const Float3 to_cam = d.centre - p;
-      const float dist = Length(to_cam);
-      const float cosv = Dot(n, to_cam) / dist;
-      if (cosv < o.min_cos) continue;
-      const Float2 px = cam.Project(pc);
-      const int mg = o.edge_margin_px, lim = std::max(mg, 1);
-      if (px.x < float(mg) || px.y < float(mg) || px.x > float(cam.width - 1 - lim) || px.y > float(cam.height - 1 - lim))
-        continue;
-      // The nearest surface there, and no depth edge within the margin.
-      const int xi = int(std::lround(px.x)), yi = int(std::lround(px.y));
-      const float tol = o.occlusion_tolerance + 0.01f * pc.z;
-      bool visible = true;
-      for (int dy = -mg; dy <= mg && visible; ++dy)
-        for (int dx = -mg; dx <= mg; ++dx) {
-          const float z = d.depth(xi + dx, yi + dy);
-          if (z == 0 || z < pc.z - tol) {
-            visible = false;
-            break;
-          }
-        }
-      if (!visible) continue;
-      // The four pixels around the point, each weighted by how near its centre is (a
-      // Gaussian of the distance in pixels): with several frames sampling the surface at
-      // different sub-pixel offsets, each texel leans on the samples taken nearest to it,
-      // which keeps edges sharper than averaging every frame's bilinear interpolation.
-      const int x0 = int(px.x), y0 = int(px.y);
-      const Image<float>& conf = d.view->confidence;
-      if (conf(x0, y0) <= 0 || conf(x0 + 1, y0) <= 0 || conf(x0, y0 + 1) <= 0 || conf(x0 + 1, y0 + 1) <= 0) continue;
-      const RadianceImage& L = d.view->radiance;
-      const float w = cosv * cosv / (pc.z * pc.z);
-      for (int yy = y0; yy <= y0 + 1; ++yy)
-        for (int xx = x0; xx <= x0 + 1; ++xx) {
-          const float dx = px.x - float(xx), dy = px.y - float(yy);
-          const float g = (gaussian ? std::exp(kernel * (dx * dx + dy * dy)) : (1 - std::fabs(dx)) * (1 - std::fabs(dy))) *
-                          conf(xx, yy) * w;
-          sum += L(xx, yy) * g;
-          wsum += g;
-        }
-      ++count;
-    }
-  };
+  std::atomic<bool> cancelled{false};
   std::atomic<long> surface{0}, frames{0}, volume{0}, views_used{0};
   std::atomic<std::size_t> tris_done{0};
   const int nt = int(m.triangles.size());
@@ -234,7 +238,7 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
         Float3 sum{0, 0, 0};
         float wsum = 0;
         int count = 0;
-        sample(p, n, cand, sum, wsum, count);
+        SampleViews(vd, o, p, n, cand, sum, wsum, count);
         if (wsum > 0) {
           out.radiance(x, y) = sum / wsum;
           out.source(x, y) = std::uint8_t(TexelSource::kFrames);
@@ -259,13 +263,20 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
     volume += my_volume;
     views_used += my_views;
   }
-  if (cancelled) throw Cancelled();
   out.surface_texels = surface;
   out.from_frames = frames;
   out.from_volume = volume;
   out.mean_views = frames > 0 ? double(views_used) / double(frames) : 0;
-  // 4. Charts too small to hold a texel centre: their rectangle takes the radiance at their
-  // triangles' centroids (frames where seen, else the volume's).
+  if (cancelled) throw Cancelled();
+}
+
+// 4. Charts too small to hold a texel centre: their rectangle takes the radiance at their
+// triangles' centroids (frames where seen, else the volume's).
+void FillSmallCharts(const Atlas& atlas, const std::vector<ViewData>& vd, const BakeOptions& o, BakedTexture& out) {
+  const Mesh& m = atlas.mesh;
+  const int W = atlas.width, H = atlas.height;
+  const bool has_normals = m.normal.size() == m.position.size();
+  const bool has_radiance = m.radiance.size() == m.position.size();
   std::vector<long> per_chart(atlas.charts.size(), 0);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
@@ -287,7 +298,7 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
     Float3 sum{0, 0, 0};
     float wsum = 0;
     int count = 0;
-    sample(p, n, all, sum, wsum, count);
+    SampleViews(vd, o, p, n, all, sum, wsum, count);
     const float area = 0.5f * Length(Cross(m.position[std::size_t(tri[1])] - m.position[std::size_t(tri[0])],
                                            m.position[std::size_t(tri[2])] - m.position[std::size_t(tri[0])])) + 1e-12f;
     const Float3 value = wsum > 0 ? sum / wsum
@@ -306,8 +317,12 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
         out.source(x, y) = std::uint8_t(TexelSource::kPadding);
       }
   }
-  // 5. Padding: each chart's empty texels from their filled neighbours in the same chart,
-  // ring by ring, so filtering and mip levels never mix charts.
+}
+
+// 5. Padding: each chart's empty texels from their filled neighbours in the same chart,
+// ring by ring, so filtering and mip levels never mix charts.
+void PadCharts(const Atlas& atlas, BakedTexture& out) {
+  const int W = atlas.width, H = atlas.height;
   const int rings = atlas.padding + 2;
 #pragma omp parallel for schedule(dynamic, 16)
   for (int c = 0; c < int(atlas.charts.size()); ++c) {
@@ -350,6 +365,32 @@ BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views,
       }
     }
   }
+}
+
+}  // namespace
+
+BakedTexture BakeTexture(const Atlas& atlas, const std::vector<BakeView>& views, const BakeOptions& o,
+                         const std::function<bool(double)>& progress) {
+  o.Check();
+  const auto tick = [&](double f) {
+    if (progress && !progress(f)) throw Cancelled();
+  };
+  const Mesh& m = atlas.mesh;
+  const int W = atlas.width, H = atlas.height;
+  BakedTexture out{RadianceImage(W, H), Image<std::uint8_t>(W, H, 0), Image<std::int32_t>(W, H, -1)};
+  if (m.triangles.empty()) return out;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const BakeView& v = views[i];
+    if (!v.camera.Valid() || v.radiance.width() != v.camera.width || v.radiance.height() != v.camera.height ||
+        v.confidence.width() != v.camera.width || v.confidence.height() != v.camera.height)
+      throw Error("texture bake: view " + std::to_string(i) + " has images of another size than its camera");
+  }
+  OwnTexels(atlas, out);
+  tick(0.05);
+  const std::vector<ViewData> vd = ViewDepths(m, views, progress);
+  BakeSurface(atlas, vd, o, progress, out);
+  FillSmallCharts(atlas, vd, o, out);
+  PadCharts(atlas, out);
   tick(1.0);
   return out;
 }
