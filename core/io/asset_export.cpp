@@ -170,6 +170,123 @@ PinholeCamera RenderCamera(const PinholeCamera& scan, int w, int h) {
 
 }  // namespace
 
+namespace {
+
+// The mesh an export writes: cleaned (or only levelled), in the output's world frame,
+// cropped and simplified as asked.
+struct PreparedMesh {
+  mesh::CleanMesh c;
+  mesh::WorldFrame wf;
+  double simplify_error = 0;
+  std::size_t before_simplify = 0;
+};
+PreparedMesh PrepareMesh(const ScanData& scan, const AssetOptions& o) {
+  PreparedMesh p;
+  mesh::CleanOptions co = o.clean_options;
+  if (!o.clean) co.min_piece_area = 0, co.max_hole_perimeter = 0, co.weld_tolerance = 0, co.fill_radiance = false;
+  p.c = mesh::Clean(scan.mesh, co);
+  mesh::CleanMesh& c = p.c;
+  const mesh::WorldFrame& wf = p.wf;
+  mesh::WorldFrameOptions wo;
+  wo.up = o.up;
+  p.wf = mesh::EstimateWorldFrame(c.mesh, wo);
+  mesh::TransformMesh(c.mesh, wf.transform);
+  if (o.crop) {
+    mesh::CleanOptions only_crop;
+    only_crop.weld_tolerance = 0, only_crop.min_piece_area = 0, only_crop.max_hole_perimeter = 0, only_crop.fill_radiance = false;
+    only_crop.crop = o.crop;
+    mesh::CleanMesh cc = mesh::Clean(c.mesh, only_crop);
+    std::vector<std::uint8_t> flags(cc.mesh.position.size());
+    for (std::size_t v = 0; v < flags.size(); ++v) flags[v] = c.radiance_filled[std::size_t(cc.source[v])];
+    c.report.cropped = cc.report.cropped;
+    c.mesh = std::move(cc.mesh);
+    c.radiance_filled = std::move(flags);
+    if (c.mesh.triangles.empty()) throw SettingError("crop", "the box holds none of the mesh (" + wf.Describe() + ")");
+  }
+  p.before_simplify = c.mesh.triangles.size();
+  if (o.triangles > 0) {
+    SimplifyResult s = Simplify(c.mesh, o.triangles);
+    std::vector<std::uint8_t> flags(s.mesh.position.size());
+    for (std::size_t v = 0; v < flags.size(); ++v) flags[v] = c.radiance_filled[std::size_t(s.source[v])];
+    c.mesh = std::move(s.mesh);
+    c.radiance_filled = std::move(flags);
+    p.simplify_error = s.error_m;
+  }
+  return p;
+}
+
+// The atlas of the mesh and its texture baked from the scan's keyframes (views placed in
+// the output's frame); the figures into `res`, and the operator's tone curve from the texture
+// where the scan has no render to take it from.
+struct AssetTexture {
+  std::optional<mesh::Atlas> atlas;
+  std::optional<mesh::BakedTexture> baked;
+};
+AssetTexture MakeTexture(const ScanData& scan, const AssetOptions& o, const mesh::Mesh& m, const mesh::WorldFrame& wf,
+                         tonemap::Operator& op, const std::function<bool(const std::string&, double)>& progress,
+                         AssetResult& res) {
+  AssetTexture t;
+  if (!o.texture) return t;
+  t.atlas = mesh::BuildAtlas(m, o.atlas, [&](double f) { return !progress || progress("UV atlas", 0.1 + 0.15 * f); });
+  std::vector<mesh::BakeView> views;
+  if (scan.keyframes && !scan.keyframes->keyframes.empty()) {
+    if (progress && !progress("keyframes", 0.25)) throw Cancelled();
+    views = pipeline::MakeBakeViews(scan.keyframes->keyframes, scan.keyframes->sensor, scan.keyframes->pcf_power);
+    for (mesh::BakeView& v : views) v.T_world_camera = Pose(wf.transform) * v.T_world_camera;
+  } else {
+    res.warnings.push_back(Say(words::kNoKeyframes));
+  }
+  t.baked = mesh::BakeTexture(*t.atlas, views, o.bake, [&](double f) { return !progress || progress("texture", 0.3 + 0.5 * f); });
+  res.atlas_width = t.atlas->width;
+  res.atlas_height = t.atlas->height;
+  res.texel_mm = t.atlas->texel_m * 1000;
+  res.texels_from_frames = t.baked->from_frames;
+  res.texels_from_volume = t.baked->from_volume;
+  if (!scan.tone_reference) {
+    Image<Float3> shown;
+    op.Map(t.baked->radiance, shown, tonemap::FrameTime::Still());
+  }
+  return t;
+}
+
+// The record of an export (export.json, without its list of files).
+json ExportReport(const ScanData& scan, const AssetOptions& o, const tonemap::Spec& spec, const std::string& units,
+                  const PreparedMesh& p, const AssetTexture& t, const AssetResult& res) {
+  const mesh::CleanReport& r = p.c.report;
+  const mesh::Mesh& m = p.c.mesh;
+  const mesh::WorldFrame& wf = p.wf;
+  json report = {
+      {"source", scan.source.string()},
+      {"up_axis", o.up == mesh::UpAxis::kZ ? "z" : "y"},
+      {"transform_output_from_model", Matrix(wf.transform)},
+      {"transform_note", "row-major 4x4; model = the first camera's frame (x right, y down, z forward), metres; "
+                         "mesh.glb is Y-up as glTF requires (a Z-up export is turned (x,y,z) -> (x,z,-y) in it)"},
+      {"world_frame", wf.Describe()},
+      {"floor_found", wf.floor_found},
+      {"tone_mapping", tonemap::FormatSpec(spec)},
+      {"radiance_units", units},
+      {"vertices", m.position.size()},
+      {"triangles", m.triangles.size()},
+      {"simplify", {{"budget", o.triangles}, {"triangles_before", p.before_simplify}, {"error_m", p.simplify_error}}},
+      {"clean", {{"welded", r.welded}, {"degenerate_removed", r.degenerate_removed}, {"duplicate_removed", r.duplicate_removed},
+                 {"cropped", r.cropped}, {"pieces_kept", r.pieces_kept}, {"pieces_removed", r.pieces_removed},
+                 {"holes_filled", r.holes_filled}, {"holes_left", r.holes_left}, {"radiance_filled", r.radiance_filled},
+                 {"radiance_missing", r.radiance_missing}}},
+      {"warnings", res.warnings}};
+  if (t.atlas)
+    report["texture"] = {{"width", t.atlas->width}, {"height", t.atlas->height}, {"texel_mm", t.atlas->texel_m * 1000},
+                         {"charts", t.atlas->charts.size()}, {"overlap_splits", t.atlas->overlap_splits},
+                         {"padding", t.atlas->padding}, {"textured_vertices", t.atlas->mesh.position.size()},
+                         {"keyframes", scan.keyframes ? scan.keyframes->keyframes.size() : 0},
+                         {"surface_texels", t.baked->surface_texels}, {"texels_from_frames", t.baked->from_frames},
+                         {"texels_from_volume", t.baked->from_volume}, {"mean_frames_per_texel", t.baked->mean_views},
+                         {"sample_sigma_px", o.bake.sample_sigma_px}};
+  if (o.render_width > 0) report["render"] = {{"width", o.render_width}, {"height", o.render_height}, {"frame", o.render_frame}};
+  return report;
+}
+
+}  // namespace
+
 AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::path& out,
                         const std::function<bool(const std::string&, double)>& progress) {
   o.Check();
@@ -192,35 +309,9 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
                                            std::to_string(std::max<std::size_t>(1, scan.trajectory.size()) - 1) + ")");
   // 1. Clean-up, world frame, crop, simplification.
   tick("clean-up", 0.0);
-  mesh::CleanOptions co = o.clean_options;
-  if (!o.clean) co.min_piece_area = 0, co.max_hole_perimeter = 0, co.weld_tolerance = 0, co.fill_radiance = false;
-  mesh::CleanMesh c = mesh::Clean(scan.mesh, co);
-  mesh::WorldFrameOptions wo;
-  wo.up = o.up;
-  const mesh::WorldFrame wf = mesh::EstimateWorldFrame(c.mesh, wo);
-  mesh::TransformMesh(c.mesh, wf.transform);
-  if (o.crop) {
-    mesh::CleanOptions only_crop;
-    only_crop.weld_tolerance = 0, only_crop.min_piece_area = 0, only_crop.max_hole_perimeter = 0, only_crop.fill_radiance = false;
-    only_crop.crop = o.crop;
-    mesh::CleanMesh cc = mesh::Clean(c.mesh, only_crop);
-    std::vector<std::uint8_t> flags(cc.mesh.position.size());
-    for (std::size_t v = 0; v < flags.size(); ++v) flags[v] = c.radiance_filled[std::size_t(cc.source[v])];
-    c.report.cropped = cc.report.cropped;
-    c.mesh = std::move(cc.mesh);
-    c.radiance_filled = std::move(flags);
-    if (c.mesh.triangles.empty()) throw SettingError("crop", "the box holds none of the mesh (" + wf.Describe() + ")");
-  }
-  double simplify_error = 0;
-  const std::size_t before_simplify = c.mesh.triangles.size();
-  if (o.triangles > 0) {
-    SimplifyResult s = Simplify(c.mesh, o.triangles);
-    std::vector<std::uint8_t> flags(s.mesh.position.size());
-    for (std::size_t v = 0; v < flags.size(); ++v) flags[v] = c.radiance_filled[std::size_t(s.source[v])];
-    c.mesh = std::move(s.mesh);
-    c.radiance_filled = std::move(flags);
-    simplify_error = s.error_m;
-  }
+  PreparedMesh p = PrepareMesh(scan, o);
+  mesh::CleanMesh& c = p.c;
+  const mesh::WorldFrame& wf = p.wf;
   tick("clean-up", 0.1);
   // The tone curve: the scan's last render where there is one.
   if (scan.tone_reference) {
@@ -229,29 +320,9 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
   }
   const OcioDisplay ocio;
   // 2. Atlas and texture.
-  std::optional<mesh::Atlas> atlas;
-  std::optional<mesh::BakedTexture> baked;
-  if (o.texture) {
-    atlas = mesh::BuildAtlas(c.mesh, o.atlas, [&](double f) { return !progress || progress("UV atlas", 0.1 + 0.15 * f); });
-    std::vector<mesh::BakeView> views;
-    if (scan.keyframes && !scan.keyframes->keyframes.empty()) {
-      tick("keyframes", 0.25);
-      views = pipeline::MakeBakeViews(scan.keyframes->keyframes, scan.keyframes->sensor, scan.keyframes->pcf_power);
-      for (mesh::BakeView& v : views) v.T_world_camera = Pose(wf.transform) * v.T_world_camera;
-    } else {
-      res.warnings.push_back(Say(words::kNoKeyframes));
-    }
-    baked = mesh::BakeTexture(*atlas, views, o.bake, [&](double f) { return !progress || progress("texture", 0.3 + 0.5 * f); });
-    res.atlas_width = atlas->width;
-    res.atlas_height = atlas->height;
-    res.texel_mm = atlas->texel_m * 1000;
-    res.texels_from_frames = baked->from_frames;
-    res.texels_from_volume = baked->from_volume;
-    if (!scan.tone_reference) {
-      Image<Float3> shown;
-      op->Map(baked->radiance, shown, tonemap::FrameTime::Still());
-    }
-  }
+  AssetTexture tex = MakeTexture(scan, o, c.mesh, wf, *op, progress, res);
+  std::optional<mesh::Atlas>& atlas = tex.atlas;
+  std::optional<mesh::BakedTexture>& baked = tex.baked;
   tick("writing", 0.8);
   Staging stage(out);
   std::vector<std::string> files;
@@ -322,34 +393,7 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
   }
   if (camera.Valid()) res.preview = shade(render(480, std::max(1, 480 * camera.height / camera.width)));
   // The record of it all.
-  const mesh::CleanReport& r = c.report;
-  json report = {
-      {"source", scan.source.string()},
-      {"up_axis", o.up == mesh::UpAxis::kZ ? "z" : "y"},
-      {"transform_output_from_model", Matrix(wf.transform)},
-      {"transform_note", "row-major 4x4; model = the first camera's frame (x right, y down, z forward), metres; "
-                         "mesh.glb is Y-up as glTF requires (a Z-up export is turned (x,y,z) -> (x,z,-y) in it)"},
-      {"world_frame", wf.Describe()},
-      {"floor_found", wf.floor_found},
-      {"tone_mapping", tonemap::FormatSpec(spec)},
-      {"radiance_units", units},
-      {"vertices", c.mesh.position.size()},
-      {"triangles", c.mesh.triangles.size()},
-      {"simplify", {{"budget", o.triangles}, {"triangles_before", before_simplify}, {"error_m", simplify_error}}},
-      {"clean", {{"welded", r.welded}, {"degenerate_removed", r.degenerate_removed}, {"duplicate_removed", r.duplicate_removed},
-                 {"cropped", r.cropped}, {"pieces_kept", r.pieces_kept}, {"pieces_removed", r.pieces_removed},
-                 {"holes_filled", r.holes_filled}, {"holes_left", r.holes_left}, {"radiance_filled", r.radiance_filled},
-                 {"radiance_missing", r.radiance_missing}}},
-      {"warnings", res.warnings}};
-  if (atlas)
-    report["texture"] = {{"width", atlas->width}, {"height", atlas->height}, {"texel_mm", atlas->texel_m * 1000},
-                         {"charts", atlas->charts.size()}, {"overlap_splits", atlas->overlap_splits},
-                         {"padding", atlas->padding}, {"textured_vertices", atlas->mesh.position.size()},
-                         {"keyframes", scan.keyframes ? scan.keyframes->keyframes.size() : 0},
-                         {"surface_texels", baked->surface_texels}, {"texels_from_frames", baked->from_frames},
-                         {"texels_from_volume", baked->from_volume}, {"mean_frames_per_texel", baked->mean_views},
-                         {"sample_sigma_px", o.bake.sample_sigma_px}};
-  if (o.render_width > 0) report["render"] = {{"width", o.render_width}, {"height", o.render_height}, {"frame", o.render_frame}};
+  json report = ExportReport(scan, o, spec, units, p, tex, res);
   files.push_back("export.json");
   report["files"] = files;
   res.report_json = report.dump(1) + "\n";
