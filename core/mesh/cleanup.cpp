@@ -120,6 +120,177 @@ Boundary FindBoundary(const Mesh& m) {
   return b;
 }
 
+namespace {
+
+// Crop: triangles with a vertex outside the box are removed.
+void Crop(Mesh& m, const Box& b, CleanReport& rep) {
+  auto inside = [&](std::int32_t v) {
+    const Float3 p = m.position[std::size_t(v)];
+    return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y && p.z <= b.max.z;
+  };
+  std::vector<std::array<std::int32_t, 3>> kept;
+  for (const auto& t : m.triangles)
+    if (inside(t[0]) && inside(t[1]) && inside(t[2])) kept.push_back(t);
+  rep.cropped = int(m.triangles.size() - kept.size());
+  m.triangles = std::move(kept);
+}
+
+// Weld: a hash grid of cells the tolerance wide; a vertex joins the first earlier vertex
+// within the tolerance in its own or a neighbouring cell.
+void Weld(Mesh& m, double tolerance, CleanReport& rep) {
+  const double cell = tolerance;
+  auto cell_of = [&](Float3 p) {
+    return std::array<std::int64_t, 3>{std::int64_t(std::floor(p.x / cell)), std::int64_t(std::floor(p.y / cell)),
+                                       std::int64_t(std::floor(p.z / cell))};
+  };
+  auto hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return std::uint64_t(x) * 73856093ull ^ std::uint64_t(y) * 19349663ull ^ std::uint64_t(z) * 83492791ull;
+  };
+  std::unordered_multimap<std::uint64_t, std::int32_t> grid;
+  std::vector<std::int32_t> rep_of(m.position.size());
+  const double tol2 = tolerance * tolerance;
+  for (std::size_t v = 0; v < m.position.size(); ++v) {
+    const Float3 p = m.position[v];
+    const auto c = cell_of(p);
+    std::int32_t found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx)
+      for (int dy = -1; dy <= 1 && found < 0; ++dy)
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          auto range = grid.equal_range(hash(c[0] + dx, c[1] + dy, c[2] + dz));
+          for (auto it = range.first; it != range.second; ++it) {
+            const Float3 d = m.position[std::size_t(it->second)] - p;
+            if (double(Dot(d, d)) <= tol2) {
+              found = it->second;
+              break;
+            }
+          }
+        }
+    if (found >= 0) {
+      rep_of[v] = found;
+      ++rep.welded;
+      // Keep the radiance where the kept vertex has none.
+      if (!HasRadiance(m.radiance[std::size_t(found)]) && HasRadiance(m.radiance[v]))
+        m.radiance[std::size_t(found)] = m.radiance[v];
+    } else {
+      rep_of[v] = std::int32_t(v);
+      grid.emplace(hash(c[0], c[1], c[2]), std::int32_t(v));
+    }
+  }
+  for (auto& t : m.triangles)
+    for (auto& i : t) i = rep_of[std::size_t(i)];
+}
+
+// Degenerate and duplicate triangles.
+void DropDegenerate(Mesh& m, CleanReport& rep) {
+  std::vector<std::array<std::int32_t, 3>> kept;
+  std::set<std::array<std::int32_t, 3>> seen;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || !(TriangleArea(m, t) > 1e-12)) {
+      ++rep.degenerate_removed;
+      continue;
+    }
+    std::array<std::int32_t, 3> s = tri;
+    std::sort(s.begin(), s.end());
+    if (!seen.insert(s).second) {
+      ++rep.duplicate_removed;
+      continue;
+    }
+    kept.push_back(tri);
+  }
+  m.triangles = std::move(kept);
+}
+
+// Pieces: drop the small ones and those that never got any radiance.
+void DropPieces(Mesh& m, double min_area, CleanReport& rep) {
+  UnionFind uf(m.position.size());
+  for (const auto& t : m.triangles) uf.Join(t[0], t[1]), uf.Join(t[1], t[2]);
+  std::unordered_map<int, double> area;
+  std::unordered_map<int, bool> lit;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const int root = uf.Find(m.triangles[t][0]);
+    area[root] += TriangleArea(m, t);
+    for (int k = 0; k < 3; ++k) lit[root] = lit[root] || HasRadiance(m.radiance[std::size_t(m.triangles[t][std::size_t(k)])]);
+  }
+  std::vector<std::array<std::int32_t, 3>> kept;
+  for (const auto& t : m.triangles) {
+    const int root = uf.Find(t[0]);
+    if (area[root] >= min_area && lit[root]) kept.push_back(t);
+  }
+  for (const auto& [root, a] : area) (a >= min_area && lit[root] ? rep.pieces_kept : rep.pieces_removed) += 1;
+  m.triangles = std::move(kept);
+}
+
+// Holes: each boundary loop up to the perimeter closed by a fan around its centroid.
+void FillHoles(Mesh& m, double max_perimeter, CleanMesh& r) {
+  CleanReport& rep = r.report;
+  std::vector<std::uint8_t>& flags = r.radiance_filled;
+  const Boundary b = FindBoundary(m);
+  for (const auto& loop : b.loops) {
+    double perimeter = 0;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      perimeter += Length(m.position[std::size_t(loop[(i + 1) % loop.size()])] - m.position[std::size_t(loop[i])]);
+    if (perimeter > max_perimeter) {
+      ++rep.holes_left;
+      continue;
+    }
+    Float3 c{0, 0, 0}, n{0, 0, 0}, rad{0, 0, 0};
+    int lit = 0;
+    for (int v : loop) {
+      c += m.position[std::size_t(v)];
+      n += m.normal[std::size_t(v)];
+      if (HasRadiance(m.radiance[std::size_t(v)])) rad += m.radiance[std::size_t(v)], ++lit;
+    }
+    const std::int32_t centre = std::int32_t(m.position.size());
+    m.position.push_back(c / float(loop.size()));
+    m.normal.push_back(Length(n) > 0 ? Normalized(n) : Float3{0, 0, 0});
+    m.radiance.push_back(lit ? rad / float(lit) : Float3{0, 0, 0});
+    flags.push_back(1);
+    r.source.push_back(-1);
+    // The loop runs along the boundary as its triangles orient it; the fan runs the other way.
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      m.triangles.push_back({std::int32_t(loop[(i + 1) % loop.size()]), std::int32_t(loop[i]), centre});
+    ++rep.holes_filled;
+  }
+}
+
+// Radiance: vertices without it take the mean of their neighbours that have it, ring by
+// ring outwards from the seen surface.
+void FillRadiance(Mesh& m, const std::vector<char>& keep, CleanMesh& r) {
+  CleanReport& rep = r.report;
+  std::vector<std::uint8_t>& flags = r.radiance_filled;
+  std::vector<std::vector<std::int32_t>> adj(m.position.size());
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      adj[std::size_t(t[std::size_t(k)])].push_back(t[std::size_t((k + 1) % 3)]);
+      adj[std::size_t(t[std::size_t(k)])].push_back(t[std::size_t((k + 2) % 3)]);
+    }
+  std::vector<char> has(m.position.size());
+  for (std::size_t v = 0; v < m.position.size(); ++v) has[v] = HasRadiance(m.radiance[v]);
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::pair<std::size_t, Float3>> wave;
+    for (std::size_t v = 0; v < m.position.size(); ++v) {
+      if (has[v] || !keep[v]) continue;
+      Float3 s{0, 0, 0};
+      int n = 0;
+      for (std::int32_t u : adj[v])
+        if (has[std::size_t(u)]) s += m.radiance[std::size_t(u)], ++n;
+      if (n) wave.emplace_back(v, s / float(n));
+    }
+    for (const auto& [v, c] : wave) {
+      m.radiance[v] = c;
+      has[v] = 1;
+      if (!flags[v]) ++rep.radiance_filled;
+      flags[v] = 1;
+      changed = true;
+    }
+  }
+  for (std::size_t v = 0; v < m.position.size(); ++v) rep.radiance_missing += keep[v] && !has[v];
+}
+
+}  // namespace
+
 CleanMesh Clean(const Mesh& in, const CleanOptions& o) {
   o.Check();
   CleanMesh r;
@@ -133,170 +304,13 @@ CleanMesh Clean(const Mesh& in, const CleanOptions& o) {
   std::iota(r.source.begin(), r.source.end(), 0);
   CleanReport& rep = r.report;
 
-  // Crop.
-  if (o.crop) {
-    const Box b = *o.crop;
-    auto inside = [&](std::int32_t v) {
-      const Float3 p = m.position[std::size_t(v)];
-      return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y && p.z <= b.max.z;
-    };
-    std::vector<std::array<std::int32_t, 3>> kept;
-    for (const auto& t : m.triangles)
-      if (inside(t[0]) && inside(t[1]) && inside(t[2])) kept.push_back(t);
-    rep.cropped = int(m.triangles.size() - kept.size());
-    m.triangles = std::move(kept);
-  }
-
-  // Weld: a hash grid of cells the tolerance wide; a vertex joins the first earlier vertex
-  // within the tolerance in its own or a neighbouring cell.
-  if (o.weld_tolerance > 0) {
-    const double cell = o.weld_tolerance;
-    auto cell_of = [&](Float3 p) {
-      return std::array<std::int64_t, 3>{std::int64_t(std::floor(p.x / cell)), std::int64_t(std::floor(p.y / cell)),
-                                         std::int64_t(std::floor(p.z / cell))};
-    };
-    auto hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-      return std::uint64_t(x) * 73856093ull ^ std::uint64_t(y) * 19349663ull ^ std::uint64_t(z) * 83492791ull;
-    };
-    std::unordered_multimap<std::uint64_t, std::int32_t> grid;
-    std::vector<std::int32_t> rep_of(m.position.size());
-    const double tol2 = o.weld_tolerance * o.weld_tolerance;
-    for (std::size_t v = 0; v < m.position.size(); ++v) {
-      const Float3 p = m.position[v];
-      const auto c = cell_of(p);
-      std::int32_t found = -1;
-      for (int dx = -1; dx <= 1 && found < 0; ++dx)
-        for (int dy = -1; dy <= 1 && found < 0; ++dy)
-          for (int dz = -1; dz <= 1 && found < 0; ++dz) {
-            auto range = grid.equal_range(hash(c[0] + dx, c[1] + dy, c[2] + dz));
-            for (auto it = range.first; it != range.second; ++it) {
-              const Float3 d = m.position[std::size_t(it->second)] - p;
-              if (double(Dot(d, d)) <= tol2) {
-                found = it->second;
-                break;
-              }
-            }
-          }
-      if (found >= 0) {
-        rep_of[v] = found;
-        ++rep.welded;
-        // Keep the radiance where the kept vertex has none.
-        if (!HasRadiance(m.radiance[std::size_t(found)]) && HasRadiance(m.radiance[v]))
-          m.radiance[std::size_t(found)] = m.radiance[v];
-      } else {
-        rep_of[v] = std::int32_t(v);
-        grid.emplace(hash(c[0], c[1], c[2]), std::int32_t(v));
-      }
-    }
-    for (auto& t : m.triangles)
-      for (auto& i : t) i = rep_of[std::size_t(i)];
-  }
-
-  // Degenerate and duplicate triangles.
-  {
-    std::vector<std::array<std::int32_t, 3>> kept;
-    std::set<std::array<std::int32_t, 3>> seen;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      const auto& tri = m.triangles[t];
-      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || !(TriangleArea(m, t) > 1e-12)) {
-        ++rep.degenerate_removed;
-        continue;
-      }
-      std::array<std::int32_t, 3> s = tri;
-      std::sort(s.begin(), s.end());
-      if (!seen.insert(s).second) {
-        ++rep.duplicate_removed;
-        continue;
-      }
-      kept.push_back(tri);
-    }
-    m.triangles = std::move(kept);
-  }
-
-  // Pieces: drop the small ones and those that never got any radiance.
-  {
-    UnionFind uf(m.position.size());
-    for (const auto& t : m.triangles) uf.Join(t[0], t[1]), uf.Join(t[1], t[2]);
-    std::unordered_map<int, double> area;
-    std::unordered_map<int, bool> lit;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      const int root = uf.Find(m.triangles[t][0]);
-      area[root] += TriangleArea(m, t);
-      for (int k = 0; k < 3; ++k) lit[root] = lit[root] || HasRadiance(m.radiance[std::size_t(m.triangles[t][std::size_t(k)])]);
-    }
-    std::vector<std::array<std::int32_t, 3>> kept;
-    for (const auto& t : m.triangles) {
-      const int root = uf.Find(t[0]);
-      if (area[root] >= o.min_piece_area && lit[root]) kept.push_back(t);
-    }
-    for (const auto& [root, a] : area) (a >= o.min_piece_area && lit[root] ? rep.pieces_kept : rep.pieces_removed) += 1;
-    m.triangles = std::move(kept);
-  }
-
-  // Holes: each boundary loop up to the perimeter closed by a fan around its centroid.
-  if (o.max_hole_perimeter > 0) {
-    const Boundary b = FindBoundary(m);
-    for (const auto& loop : b.loops) {
-      double perimeter = 0;
-      for (std::size_t i = 0; i < loop.size(); ++i)
-        perimeter += Length(m.position[std::size_t(loop[(i + 1) % loop.size()])] - m.position[std::size_t(loop[i])]);
-      if (perimeter > o.max_hole_perimeter) {
-        ++rep.holes_left;
-        continue;
-      }
-      Float3 c{0, 0, 0}, n{0, 0, 0}, rad{0, 0, 0};
-      int lit = 0;
-      for (int v : loop) {
-        c += m.position[std::size_t(v)];
-        n += m.normal[std::size_t(v)];
-        if (HasRadiance(m.radiance[std::size_t(v)])) rad += m.radiance[std::size_t(v)], ++lit;
-      }
-      const std::int32_t centre = std::int32_t(m.position.size());
-      m.position.push_back(c / float(loop.size()));
-      m.normal.push_back(Length(n) > 0 ? Normalized(n) : Float3{0, 0, 0});
-      m.radiance.push_back(lit ? rad / float(lit) : Float3{0, 0, 0});
-      flags.push_back(1);
-      r.source.push_back(-1);
-      // The loop runs along the boundary as its triangles orient it; the fan runs the other way.
-      for (std::size_t i = 0; i < loop.size(); ++i)
-        m.triangles.push_back({std::int32_t(loop[(i + 1) % loop.size()]), std::int32_t(loop[i]), centre});
-      ++rep.holes_filled;
-    }
-  }
-
-  // Radiance: vertices without it take the mean of their neighbours that have it, ring by
-  // ring outwards from the seen surface.
+  if (o.crop) Crop(m, *o.crop, rep);
+  if (o.weld_tolerance > 0) Weld(m, o.weld_tolerance, rep);
+  DropDegenerate(m, rep);
+  DropPieces(m, o.min_piece_area, rep);
+  if (o.max_hole_perimeter > 0) FillHoles(m, o.max_hole_perimeter, r);
   std::vector<char> keep = Referenced(m);
-  if (o.fill_radiance) {
-    std::vector<std::vector<std::int32_t>> adj(m.position.size());
-    for (const auto& t : m.triangles)
-      for (int k = 0; k < 3; ++k) {
-        adj[std::size_t(t[std::size_t(k)])].push_back(t[std::size_t((k + 1) % 3)]);
-        adj[std::size_t(t[std::size_t(k)])].push_back(t[std::size_t((k + 2) % 3)]);
-      }
-    std::vector<char> has(m.position.size());
-    for (std::size_t v = 0; v < m.position.size(); ++v) has[v] = HasRadiance(m.radiance[v]);
-    for (bool changed = true; changed;) {
-      changed = false;
-      std::vector<std::pair<std::size_t, Float3>> wave;
-      for (std::size_t v = 0; v < m.position.size(); ++v) {
-        if (has[v] || !keep[v]) continue;
-        Float3 s{0, 0, 0};
-        int n = 0;
-        for (std::int32_t u : adj[v])
-          if (has[std::size_t(u)]) s += m.radiance[std::size_t(u)], ++n;
-        if (n) wave.emplace_back(v, s / float(n));
-      }
-      for (const auto& [v, c] : wave) {
-        m.radiance[v] = c;
-        has[v] = 1;
-        if (!flags[v]) ++rep.radiance_filled;
-        flags[v] = 1;
-        changed = true;
-      }
-    }
-    for (std::size_t v = 0; v < m.position.size(); ++v) rep.radiance_missing += keep[v] && !has[v];
-  }
+  if (o.fill_radiance) FillRadiance(m, keep, r);
   Compact(m, flags, r.source, keep);
   return r;
 }
