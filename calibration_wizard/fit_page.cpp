@@ -20,7 +20,6 @@
 
 namespace hdrf::wizard {
 
-namespace fs = std::filesystem;
 using namespace page;
 
 FitPage::FitPage(CalibrationWizard* w) : w_(w) {

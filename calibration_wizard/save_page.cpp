@@ -15,7 +15,6 @@
 
 namespace hdrf::wizard {
 
-namespace fs = std::filesystem;
 using namespace page;
 
 SavePage::SavePage(CalibrationWizard* w) : w_(w) {

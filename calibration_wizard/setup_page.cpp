@@ -22,7 +22,6 @@
 
 namespace hdrf::wizard {
 
-namespace fs = std::filesystem;
 using namespace page;
 
 SetupPage::SetupPage(CalibrationWizard* w) : w_(w) {

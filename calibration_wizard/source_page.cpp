@@ -24,7 +24,6 @@
 
 namespace hdrf::wizard {
 
-namespace fs = std::filesystem;
 using namespace page;
 
 SourcePage::SourcePage(CalibrationWizard* w) : w_(w) {

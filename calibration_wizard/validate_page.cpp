@@ -12,7 +12,6 @@
 
 namespace hdrf::wizard {
 
-namespace fs = std::filesystem;
 using namespace page;
 
 ValidatePage::ValidatePage(CalibrationWizard* w) : w_(w) {

@@ -47,7 +47,6 @@ void StageViews::Build(QMainWindow* window) {
   window->splitDockWidget(docks_["model_radiance"], docks_["model_normals"], Qt::Vertical);
 }
 
-
 // The camera's own images: the colour as delivered and the depth (also the live preview).
 void StageViews::ShowCamera(const std::shared_ptr<const Snapshot>& s) {
   auto visible = [this](const char* k) { return docks_[k]->isVisible(); };
@@ -78,7 +77,6 @@ pipeline::ViewSet StageViews::Shown() const {
   v.render = on("model_radiance") || on("model_normals");
   return v;
 }
-
 
 void StageViews::ShowStages(const std::shared_ptr<const Snapshot>& s, ToneMapper& tone) {
   const auto& im = s->images;
