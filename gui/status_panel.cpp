@@ -92,19 +92,18 @@ QString StatusPanel::Key(const Snapshot& s) {
       .join(QLatin1Char('|'));
 }
 
-void StatusPanel::Show(const Snapshot& snap) {
-  const Snapshot* s = &snap;
-  key_ = Key(snap);
-  const auto& r = s->report;
+void StatusPanel::Show(const Snapshot& s) {
+  key_ = Key(s);
+  const auto& r = s.report;
   frames_->setText(tr("Frame %1%2 on the %3")
-                             .arg(r.index + 1)
-                             .arg(s->frames_total > 0 ? QStringLiteral(" / %1").arg(s->frames_total) : QString())
-                             .arg(QString::fromStdString(s->device).toUpper()));
+                       .arg(r.index + 1)
+                       .arg(s.frames_total > 0 ? QStringLiteral(" / %1").arg(s.frames_total) : QString())
+                       .arg(QString::fromStdString(s.device).toUpper()));
   const QString far = r.depth_beyond_far > 0.25
                           ? "\n" + tr("%1 % of the view lies beyond %L2 m, past the model's ray cast: tracking uses "
                                        "nearer surfaces (volume.raycast_far_m)")
                                         .arg(int(100 * r.depth_beyond_far))
-                                        .arg(s->raycast_far_m, 0, 'f', 1)
+                                        .arg(s.raycast_far_m, 0, 'f', 1)
                           : QString();
   using pipeline::FrameState;
   const QString why = language::EngineText(r.why);
@@ -129,15 +128,15 @@ void StatusPanel::Show(const Snapshot& snap) {
     SetStyle(health_, far.isEmpty() && !slow ? "QLabel { color: white; background: #207040; padding: 3px; }"
                                                   : "QLabel { color: white; background: #a07010; padding: 3px; }");
   }
-  if (!s->reloc_hint.empty() && s->reloc_hint_frame != reloc_hint_frame_) {
-    reloc_hint_frame_ = s->reloc_hint_frame;
-    reloc_hint_->setPixmap(QPixmap::fromImage(FromColor(s->reloc_hint))
+  if (!s.reloc_hint.empty() && s.reloc_hint_frame != reloc_hint_frame_) {
+    reloc_hint_frame_ = s.reloc_hint_frame;
+    reloc_hint_->setPixmap(QPixmap::fromImage(FromColor(s.reloc_hint))
                                .scaled(240, 180, Qt::KeepAspectRatio, Qt::SmoothTransformation));
-    reloc_hint_->setToolTip(tr("The scan's view at frame %1").arg(s->reloc_hint_frame + 1));
-    reloc_caption_->setText(tr("Point the camera where the scan saw this (frame %1):").arg(s->reloc_hint_frame + 1));
+    reloc_hint_->setToolTip(tr("The scan's view at frame %1").arg(s.reloc_hint_frame + 1));
+    reloc_caption_->setText(tr("Point the camera where the scan saw this (frame %1):").arg(s.reloc_hint_frame + 1));
     reloc_hint_->show();
     reloc_caption_->show();
-  } else if (s->reloc_hint.empty()) {
+  } else if (s.reloc_hint.empty()) {
     reloc_hint_frame_ = -1;
     reloc_hint_->hide();
     reloc_caption_->hide();
@@ -147,22 +146,22 @@ void StatusPanel::Show(const Snapshot& snap) {
   for (int i = 0; i < 6; ++i) stage_ms_[i]->setText(tr("%L1 ms").arg(ms[i], 0, 'f', 1));
   stage_ms_[6]->setText(tr("%L1 ms (%L2 frames/s)").arg(m.total(), 0, 'f', 1).arg(m.total() > 0 ? 1000.0 / m.total() : 0.0, 0, 'f', 1));
   memory_->setText(tr("Volume: %L1 of %L2 MiB in %3 bricks")
-                       .arg(double(s->volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
-                       .arg(s->volume_budget_mb, 0, 'f', 0)
-                       .arg(s->bricks));
-  if (s->gpu_budget_mb > 0 && s->device == "cuda")
+                       .arg(double(s.volume_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
+                       .arg(s.volume_budget_mb, 0, 'f', 0)
+                       .arg(s.bricks));
+  if (s.gpu_budget_mb > 0 && s.device == "cuda")
     memory_->setText(memory_->text() + "\n" +
                      tr("GPU: %L1 of %L2 MiB, %3 bricks; host memory: %4 bricks (%5 moved out, %6 back)")
-                         .arg(double(s->streaming.gpu_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
-                         .arg(s->gpu_budget_mb, 0, 'f', 0)
-                         .arg(s->streaming.gpu_bricks)
-                         .arg(s->streaming.host_bricks)
-                         .arg(s->streaming.swapped_out)
-                         .arg(s->streaming.swapped_in));
-  if (!s->volume_full.empty()) {
+                         .arg(double(s.streaming.gpu_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
+                         .arg(s.gpu_budget_mb, 0, 'f', 0)
+                         .arg(s.streaming.gpu_bricks)
+                         .arg(s.streaming.host_bricks)
+                         .arg(s.streaming.swapped_out)
+                         .arg(s.streaming.swapped_in));
+  if (!s.volume_full.empty()) {
     memory_->setText(memory_->text() + "\n" +
                      tr("VOLUME FULL: %1. New surfaces are not added; the model is kept and can be saved and "
-                        "exported.").arg(QString::fromStdString(s->volume_full)));
+                        "exported.").arg(QString::fromStdString(s.volume_full)));
     SetStyle(memory_, "QLabel { color: white; background: #b06010; padding: 3px; }");
   } else {
     SetStyle(memory_, QString());

@@ -168,10 +168,6 @@ PinholeCamera RenderCamera(const PinholeCamera& scan, int w, int h) {
   return {w, h, scan.fy * s * (scan.fx / scan.fy), scan.fy * s, 0.5f * float(w) - 0.5f, 0.5f * float(h) - 0.5f};
 }
 
-}  // namespace
-
-namespace {
-
 // The mesh an export writes: cleaned (or only levelled), in the output's world frame,
 // cropped and simplified as asked.
 struct PreparedMesh {
