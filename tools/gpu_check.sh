@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 out="${OUT:-build-gpu/logs}"
 mkdir -p "$out"
 {
-  echo "== $(date -u +%FT%TZ) $(uname -m) $(nproc) cores"
+  echo "== $(date -u +%FT%TZ) $(uname -m) $(nproc) cores, commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
   nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader || true
   nvcc --version | tail -n 2
   cmake --version | head -n 1
@@ -36,12 +36,13 @@ ctest --preset core-gpu -L gpu -V 2>&1 | tee "$out/ctest_gpu.txt" | grep -E "GPU
 gpu=${PIPESTATUS[0]}
 bench=0
 if [ "${HDRF_GPU_BENCH:-1}" = 1 ]; then
-  build-gpu/app/bench/hdrfusion-bench --frames "${HDRF_BENCH_FRAMES:-100}" --device "${HDRF_BENCH_DEVICE:-both}" --voxel "${HDRF_BENCH_VOXEL:-all}" 2>&1 | tee "$out/bench.txt"
+  # Markdown with its heading, for docs/performance.md (tools/performance.sh --gpu bench.md).
+  build-gpu/app/bench/hdrfusion-bench --markdown --frames "${HDRF_BENCH_FRAMES:-100}" --device "${HDRF_BENCH_DEVICE:-both}" --voxel "${HDRF_BENCH_VOXEL:-all}" 2>> "$out/bench_progress.txt" | tee "$out/bench.md"
   bench=${PIPESTATUS[0]}
 fi
 tonemap=0
 if [ "${HDRF_TONEMAP_BENCH:-1}" = 1 ]; then
-  build-gpu/app/bench/hdrfusion-bench --suite tonemap --frames "${HDRF_TONEMAP_FRAMES:-50}" 2>&1 | tee "$out/bench_tonemap.txt"
+  build-gpu/app/bench/hdrfusion-bench --markdown --suite tonemap --frames "${HDRF_TONEMAP_FRAMES:-50}" 2>> "$out/bench_progress.txt" | tee "$out/bench_tonemap.md"
   tonemap=${PIPESTATUS[0]}
 fi
 archs=0

@@ -8,6 +8,10 @@
 #include <vector>
 #include <algorithm>
 
+#include <omp.h>
+
+#include <fstream>
+
 #include "pipeline/scan_session.h"
 #include "pipeline/frame_source.h"
 
@@ -333,6 +337,20 @@ std::string EngineFloorTable(const std::vector<EngineBenchRow>& rows) {
     out += line;
   }
   return out;
+}
+
+std::string MarkdownHeading(const std::string& title, const std::string& command) {
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::string why;
+  const std::string gpu = CudaAvailable(&why) ? "; GPU " + CudaDeviceDescription() : "; no GPU";
+  return "## " + title + "\n\n`" + command + "` on " + cpu + ", " + std::to_string(omp_get_max_threads()) +
+         " threads" + gpu + ".\n\n";
 }
 
 }  // namespace hdrf::pipeline

@@ -101,4 +101,9 @@ std::string EngineMarginTable(const std::vector<EngineBenchRow>& rows);
 // Bytes per second a parallel memcpy of 256 MiB achieves on the CPU threads (read plus write).
 double CpuCopyBandwidth();
 
+// The heading a suite's table gets in docs/performance.md (`--markdown`): the title, the
+// command that made it, and the machine it ran on (CPU model and threads, the GPU if one is
+// usable), so that every figure says where it comes from.
+std::string MarkdownHeading(const std::string& title, const std::string& command);
+
 }  // namespace hdrf::pipeline

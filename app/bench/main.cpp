@@ -1,6 +1,7 @@
 // hdrfusion-bench: the engine benchmark with nothing but the core (for core-only builds such
 // as the GPU machine's). `hdrfusion bench --suite engine` prints the same table.
 //   hdrfusion-bench [--frames N] [--device cpu|cuda|both] [--case WxHxVOXEL_MM]... [--voxel E|all]
+//                   [--markdown] (a heading for docs/performance.md: the command and the machine)
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,10 +20,15 @@ int main(int argc, char** argv) {
   o.devices = {Device::kCpu, Device::kCuda};
   bool custom_cases = false;
   bool tonemap = false;
+  bool markdown = false;
+  std::string command = "hdrfusion-bench";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--suite" && has_value) {
+    if (a != "--markdown") command += " " + a + (has_value && a != "--help" ? std::string(" ") + argv[i + 1] : "");
+    if (a == "--markdown") {
+      markdown = true;
+    } else if (a == "--suite" && has_value) {
       const std::string s = argv[++i];
       if (s != "engine" && s != "tonemap") {
         std::fprintf(stderr, "hdrfusion-bench: --suite must be engine or tonemap, not '%s'\n", s.c_str());
@@ -59,7 +65,7 @@ int main(int argc, char** argv) {
       custom_cases = true;
       o.cases.push_back(c);
     } else {
-      std::fprintf(stderr, "usage: hdrfusion-bench [--suite engine|tonemap] [--frames N] [--device cpu|cuda|both] [--case WxHxVOXEL_MM]... [--voxel full|no-nr|compact|all]\n");
+      std::fprintf(stderr, "usage: hdrfusion-bench [--suite engine|tonemap] [--frames N] [--device cpu|cuda|both] [--case WxHxVOXEL_MM]... [--voxel full|no-nr|compact|all] [--markdown]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -74,6 +80,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "hdrfusion-bench: --device cuda, but no CUDA device can be used here: %s\n", why.c_str());
     return 1;
   }
+  if (markdown) std::printf("%s", pipeline::MarkdownHeading(tonemap ? "Tone mapping" : "Engine", command).c_str());
   if (tonemap) {
     std::vector<Device> devices;
     for (Device d : o.devices)

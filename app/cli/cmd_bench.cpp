@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <map>
 #include <tuple>
 #include <vector>
 #include <cstdio>
@@ -103,6 +104,7 @@ Command AddBenchCommand(CLI::App& app) {
     std::string dir;
     std::vector<std::string> images;
     std::string scan;
+    bool markdown = false;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench", "Measure speed and print a table");
@@ -119,7 +121,18 @@ Command AddBenchCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--device", a->device, "Engine suite: cpu, cuda or both (CUDA rows where a GPU is usable)")
       ->check(CLI::IsMember({"cpu", "cuda", "both"}))->capture_default_str();
+  cmd->add_flag("--markdown", a->markdown,
+                "Start with the suite's heading for docs/performance.md: the command and the machine (tools/performance.sh)");
   return {cmd, [a] {
+    if (a->markdown) {
+      static const std::map<std::string, std::string> kTitles = {
+          {"sim", "Synthetic sensor"}, {"engine", "Engine"}, {"record", "Recording"},
+          {"tonemap", "Tone mapping"}, {"export", "Export"}};
+      std::string command = "hdrfusion bench --suite " + a->suite + " --frames " + std::to_string(a->frames);
+      if (a->suite == "engine" && a->device != "both") command += " --device " + a->device;
+      std::printf("%s", pipeline::MarkdownHeading(kTitles.at(a->suite), command).c_str());
+      std::fflush(stdout);
+    }
     if (a->suite == "record") return BenchRecord(a->frames, a->dir);
     if (a->suite == "tonemap") return BenchTonemap(a->frames, a->images);
     if (a->suite == "export") return BenchExport(a->frames, a->scan);

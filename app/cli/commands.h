@@ -18,5 +18,6 @@ Command AddRecordCommand(CLI::App& app);
 Command AddCaptureSweepCommand(CLI::App& app);
 Command AddTonemapCommand(CLI::App& app);
 Command AddExportCommand(CLI::App& app);
+Command AddSettingsCommand(CLI::App& app);
 
 }  // namespace hdrf::cli

@@ -9,6 +9,8 @@ int main(int argc, char** argv) {
   CLI::App app{"HDRFusion: HDR RGB-D scanning for auto-exposure cameras", "hdrfusion"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "hdrfusion 0.1.0");
+  app.footer("Each command's options: hdrfusion COMMAND --help. Manual: man hdrfusion. Documentation (the\n"
+             "docs/ named in the help): docs/index.md in the source, /usr/share/doc/hdrfusion-studio/ when installed.");
   const std::vector<hdrf::cli::Command> commands = {
       hdrf::cli::AddInfoCommand(app),
       hdrf::cli::AddRadianceCommand(app),
@@ -22,6 +24,7 @@ int main(int argc, char** argv) {
       hdrf::cli::AddCaptureSweepCommand(app),
       hdrf::cli::AddTonemapCommand(app),
       hdrf::cli::AddExportCommand(app),
+      hdrf::cli::AddSettingsCommand(app),
       hdrf::cli::AddBenchCommand(app),
   };
   return hdrf::cli::Run(app, commands, argc, argv);

@@ -450,7 +450,7 @@ const Setting& FindSetting(const std::string& key) {
   for (const Setting& s : Settings())
     if (s.key == key) return s;
   if (const std::string why = RetiredSetting(key); !why.empty()) throw SettingError(key, why);
-  throw SettingError(key, "unknown setting (hdrfusion scan --help lists them)");
+  throw SettingError(key, "unknown setting (hdrfusion settings lists them)");
 }
 
 }  // namespace hdrf::pipeline
