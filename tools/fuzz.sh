@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes every file reader (tests/fuzz, docs/reliability.md): builds the fuzz preset (clang 14,
+# Fuzzes every file reader (tests/fuzz, docs/dev/reliability.md): builds the fuzz preset (clang 14,
 # libFuzzer, AddressSanitizer + UBSan), makes a seed corpus from files the programs write
 # themselves, and runs each target.
 #

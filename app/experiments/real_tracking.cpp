@@ -2,7 +2,8 @@
 // folder (frame-NNNNNN.color.png or .jpg, .depth.png in millimetres, .pose.txt camera to
 // world, camera-intrinsics.txt) are written as a sequence in the TUM layout; our trackers
 // (nr+icp, icp, nr, frame to model, engine defaults, the sRGB curve since the sensor has no
-// calibration; nr+icp also with fixed instead of measured scales) and the peers
+// calibration; nr+icp also with fixed instead of measured scales, nr+icp and icp also with the
+// real-sensor settings) and the peers
 // (hdrfusion-peers) run on that folder in the same run, each compared with the dataset's own
 // poses. Writes real.md and real.json (with several recordings, one folder each and a real.md
 // of all).
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -162,14 +164,33 @@ std::string RunRecording(const fs::path& data, const fs::path& out, const fs::pa
     const TrackerRun run = RunTracker(spec, frames, sensor.camera, sensor, engine, [&](int) { p.Step(); });
     p.Done();
     rows.push_back({spec.id, spec.label, "ours", run.poses, run.lost, run.seconds, ""});
-    if (spec.kind == tracking::TrackerKind::kNrIcp) {  // the same with the fixed scales, for comparison
-      pipeline::PipelineOptions fixed = engine;
-      fixed.tracker.adaptive_scales = false;
-      cli::Progress pf("real: " + spec.id + " (fixed scales)", int(frames.size()));
-      const TrackerRun rf = RunTracker(spec, frames, sensor.camera, sensor, fixed, [&](int) { pf.Step(); });
-      pf.Done();
-      rows.push_back({spec.id + "-fixed-scales", spec.label + ", fixed scales (tracker.adaptive_scales false)",
-                      "ours", rf.poses, rf.lost, rf.seconds, ""});
+    // The same tracker with settings a real sensor may want, for comparison with its defaults:
+    // fixed instead of measured scales (nr+icp), and the settings for triangulating depth
+    // sensors and unregistered colour (docs/engine.md, "Real sensors").
+    struct Variant {
+      std::string suffix, label;
+      std::function<void(pipeline::PipelineOptions&)> set;
+    };
+    std::vector<Variant> variants;
+    if (spec.kind == tracking::TrackerKind::kNrIcp) {
+      variants.push_back({"-fixed-scales", ", fixed scales (tracker.adaptive_scales false)",
+                          [](pipeline::PipelineOptions& o) { o.tracker.adaptive_scales = false; }});
+      variants.push_back({"-real-sensor", ", tracker.depth_noise_scaling and tracker.photo_agreement true",
+                          [](pipeline::PipelineOptions& o) {
+                            o.tracker.depth_noise_scaling = true;
+                            o.tracker.photo_agreement = true;
+                          }});
+    }
+    if (spec.kind == tracking::TrackerKind::kIcp)
+      variants.push_back({"-real-sensor", ", tracker.depth_noise_scaling true",
+                          [](pipeline::PipelineOptions& o) { o.tracker.depth_noise_scaling = true; }});
+    for (const Variant& v : variants) {
+      pipeline::PipelineOptions o = engine;
+      v.set(o);
+      cli::Progress pv("real: " + spec.id + v.suffix, int(frames.size()));
+      const TrackerRun rv = RunTracker(spec, frames, sensor.camera, sensor, o, [&](int) { pv.Step(); });
+      pv.Done();
+      rows.push_back({spec.id + v.suffix, spec.label + v.label, "ours", rv.poses, rv.lost, rv.seconds, ""});
     }
   }
   // 3. The peers on the same folder, now.

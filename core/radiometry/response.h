@@ -1,4 +1,4 @@
-// Camera response tables and the image formation model (docs/architecture.md, "The method").
+// Camera response tables and the image formation model (docs/dev/architecture.md, "The method").
 #pragma once
 
 #include <array>

@@ -41,7 +41,7 @@ struct VolumeOptions {
   float raycast_near_m = 0.2f;   // ray casting starts this far from the camera ...
   float raycast_far_m = 8.0f;    // ... and gives up this far
   // Voxel storage (volume_impl.h, volume.voxel): compact by default, as accurate as full on the
-  // engine's tests at 12 instead of 28 bytes (docs/benchmarks.md).
+  // engine's tests at 12 instead of 28 bytes (VoxelEncoding.CompactVoxelsKeepTheAccuracyOfFullOnes).
   VoxelEncoding encoding = VoxelEncoding::kCompact;
   void Check() const;            // throws SettingError naming the setting (volume.*)
   float truncation_m() const { return truncation_voxels * voxel_m; }

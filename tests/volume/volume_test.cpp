@@ -454,7 +454,7 @@ TEST(VoxelEncoding, HalfFloatsRoundTripAndRoundToNearestEven) {
 
 // The compact encodings against the full one on the same 100-frame flicker sequence: fused
 // with the true poses and exposures (the encoding alone decides the surface and radiance),
-// then tracked end to end (docs/benchmarks.md records the table).
+// then tracked end to end.
 TEST(VoxelEncoding, CompactVoxelsKeepTheAccuracyOfFullOnes) {
   sim::SimOptions so;
   so.frames = 100;
