@@ -1,7 +1,10 @@
 #include "calibration_wizard/calibration_wizard.h"
 #include "gui/language/language.h"
 
+#include <QApplication>
 #include <QDir>
+#include <QMenu>
+#include <QPushButton>
 #include <QGuiApplication>
 #include <QScreen>
 #include <QThread>
@@ -9,6 +12,7 @@
 #include <cstdio>
 
 #include "calibration_wizard/wizard_pages.h"
+#include "gui/help/help.h"
 
 namespace hdrf::wizard {
 
@@ -18,7 +22,16 @@ CalibrationWizard::CalibrationWizard(WizardSettings options, QWidget* parent)
   setWindowTitle(tr("Camera calibration"));
   setWizardStyle(QWizard::ClassicStyle);
   setOption(QWizard::NoBackButtonOnStartPage);
-  setOption(QWizard::HaveHelpButton, false);
+  // Help: the calibration guide, the documentation and About, as the studio's Help menu.
+  setOption(QWizard::HaveHelpButton, true);
+  setButtonText(QWizard::HelpButton, tr("Help"));
+  if (auto* help_button = qobject_cast<QPushButton*>(button(QWizard::HelpButton))) {
+    auto* menu = new QMenu(help_button);
+    menu->setObjectName("menu_help");
+    help::FillHelpMenu(menu, this, QApplication::applicationName(), tr("Calibrating a camera"),
+                       "tutorials/calibrate.md");
+    help_button->setMenu(menu);
+  }
   setPage(kSource, new SourcePage(this));
   setPage(kSetup, new SetupPage(this));
   setPage(kCapture, new CapturePage(this));

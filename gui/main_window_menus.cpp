@@ -23,6 +23,7 @@
 #include "calibration_wizard/calibration_wizard.h"
 #include "common/error.h"
 #include "gui/export_dialog.h"
+#include "gui/help/help.h"
 #include "gui/language/language.h"
 #include "gui/sensor_panel.h"
 #include "gui/settings_form.h"
@@ -144,6 +145,11 @@ void MainWindow::BuildMenus() {
       statusBar()->showMessage(tr("The language changes when the studio starts again."), 15000);
     });
   }
+  // Help: the documentation in a window of the studio's own, the operator's guide first.
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->setObjectName("menu_help");
+  help::FillHelpMenu(help, this, QApplication::applicationName(), tr("Scanning a room"),
+                     "tutorials/scan-a-room.md");
 }
 
 void MainWindow::OpenCalibrationWizard() {

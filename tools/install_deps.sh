@@ -15,7 +15,7 @@ packages=(
   libopenexr-dev zlib1g-dev libopenni2-dev
   qt6-base-dev libqt6opengl6-dev qt6-tools-dev qt6-l10n-tools qt6-translations-l10n libxkbcommon-dev libvtk9-dev libopencolorio-dev libgl-dev xvfb xauth
   libmeshoptimizer-dev libtinygltf-dev
-  assimp-utils
+  assimp-utils help2man
   pfstools pfstmo
 )
 if [ "${1:-}" = "--peers" ]; then

@@ -1741,6 +1741,14 @@ Open it to continue or export it?</source>
         <source>Off: while a scan runs the 3-D view shows a coarser surface (from every other voxel, a quarter of the triangles; every fourth where the display cannot draw that quickly), which leaves more of the processor to the scan; the whole surface follows when the scan stops</source>
         <translation>Aus: Während ein Scan läuft, zeigt die 3-D-Ansicht eine gröbere Oberfläche (aus jedem zweiten Voxel, ein Viertel der Dreiecke; aus jedem vierten, wo die Anzeige nicht so schnell zeichnen kann), die dem Scan mehr vom Prozessor lässt; die ganze Oberfläche folgt, wenn der Scan anhält</translation>
     </message>
+    <message>
+        <source>&amp;Help</source>
+        <translation>&amp;Hilfe</translation>
+    </message>
+    <message>
+        <source>Scanning a room</source>
+        <translation>Einen Raum scannen</translation>
+    </message>
 </context>
 <context>
     <name>hdrf::gui::ScanWorker</name>
@@ -2380,6 +2388,47 @@ Open it to continue or export it?</source>
     </message>
 </context>
 <context>
+    <name>hdrf::help</name>
+    <message>
+        <source>Documentation</source>
+        <translation>Dokumentation</translation>
+    </message>
+    <message>
+        <source>Back</source>
+        <translation>Zurück</translation>
+    </message>
+    <message>
+        <source>Forward</source>
+        <translation>Vor</translation>
+    </message>
+    <message>
+        <source>Contents</source>
+        <translation>Inhalt</translation>
+    </message>
+    <message>
+        <source>The documentation was not found. Looked in:
+%1</source>
+        <translation>Die Dokumentation wurde nicht gefunden. Gesucht in:
+%1</translation>
+    </message>
+    <message>
+        <source>Messages and what to do</source>
+        <translation>Meldungen und was zu tun ist</translation>
+    </message>
+    <message>
+        <source>Command-line reference</source>
+        <translation>Referenz der Kommandozeile</translation>
+    </message>
+    <message>
+        <source>About %1</source>
+        <translation>Über %1</translation>
+    </message>
+    <message>
+        <source>&lt;b&gt;%1&lt;/b&gt; %2&lt;p&gt;3-D scanning with true high-dynamic-range colour for auto-exposure RGB-D cameras.&lt;/p&gt;&lt;p&gt;It implements S. Li, A. Handa, Y. Zhang, A. Calway, &lt;i&gt;HDRFusion: HDR SLAM using a low-cost auto-exposure RGB-D sensor&lt;/i&gt;, 3DV 2016.&lt;/p&gt;&lt;p&gt;MIT licence. Documentation: %3&lt;/p&gt;</source>
+        <translation>&lt;b&gt;%1&lt;/b&gt; %2&lt;p&gt;3-D-Scannen mit echter Hochkontrastfarbe (HDR) für RGB-D-Kameras mit Belichtungsautomatik.&lt;/p&gt;&lt;p&gt;Es setzt S. Li, A. Handa, Y. Zhang, A. Calway, &lt;i&gt;HDRFusion: HDR SLAM using a low-cost auto-exposure RGB-D sensor&lt;/i&gt;, 3DV 2016, um.&lt;/p&gt;&lt;p&gt;MIT-Lizenz. Dokumentation: %3&lt;/p&gt;</translation>
+    </message>
+</context>
+<context>
     <name>hdrf::wizard::CalibrationWizard</name>
     <message>
         <source>Camera calibration</source>
@@ -2388,6 +2437,14 @@ Open it to continue or export it?</source>
     <message>
         <source>failed (no message)</source>
         <translation>fehlgeschlagen (ohne Meldung)</translation>
+    </message>
+    <message>
+        <source>Help</source>
+        <translation>Hilfe</translation>
+    </message>
+    <message>
+        <source>Calibrating a camera</source>
+        <translation>Eine Kamera kalibrieren</translation>
     </message>
 </context>
 <context>

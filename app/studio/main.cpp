@@ -38,6 +38,7 @@ struct CommandLine {
   CommandLine() {
     p.setApplicationDescription("HDRFusion Studio: HDR RGB-D scanning");
     p.addHelpOption();
+    p.addVersionOption();
     p.addOptions({source, frames, device, shot, start, tone, project, no_recovery, language});
   }
 };
@@ -47,8 +48,9 @@ struct CommandLine {
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
       qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-    // --help still answers (and a wrong option is still named) without a display.
+    // --help and --version still answer (and a wrong option is still named) without a display.
     QCoreApplication core(argc, argv);
+    QCoreApplication::setApplicationVersion("0.1.0");
     CommandLine cl;
     cl.p.process(core);
     std::fprintf(stderr,
@@ -60,6 +62,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusion");
   QApplication::setApplicationName("HDRFusion Studio");
+  QApplication::setApplicationVersion("0.1.0");
   CommandLine cl;
   QCommandLineParser& p = cl.p;
   p.process(app);

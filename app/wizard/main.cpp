@@ -36,6 +36,7 @@ struct CommandLine {
   CommandLine() {
     p.setApplicationDescription("Guided camera calibration: exposure sweep, response, noise, profile");
     p.addHelpOption();
+    p.addVersionOption();
     p.addOptions({source, sweep, report, step, repeats, method, basis, automatic, shots, language});
   }
 };
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
       qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
     QCoreApplication core(argc, argv);
+    QCoreApplication::setApplicationVersion("0.1.0");
     CommandLine c;
     c.p.process(core);  // --help exits here
     std::fprintf(stderr,
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("HDRFusion");
   QApplication::setApplicationName("HDRFusion Calibration");
+  QApplication::setApplicationVersion("0.1.0");
   CommandLine c;
   QCommandLineParser& p = c.p;
   p.process(app);

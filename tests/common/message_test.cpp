@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -85,6 +88,51 @@ TEST(Messages, OtherTextIsNotTakenForAWording) {
   for (int i = 0; i < 2000; ++i) hostile += " ms (step  of ) ,  times in a row.  The ";
   hostile += " steps captured so far are kept in .";
   EXPECT_FALSE(ParseMessage(hostile));
+}
+
+}  // namespace
+}  // namespace hdrf
+
+namespace hdrf {
+namespace {
+
+// docs/faq.md has an entry for every wording a user can meet: its first fixed fragment of
+// ten characters or more (text between the arguments) appears in the page, with the page's
+// *N* standing for an argument. A wording added without its entry fails here.
+TEST(Messages, EveryWordingHasAnEntryInTheFaq) {
+  std::ifstream in(HDRF_DOCS_DIR "/faq.md");
+  ASSERT_TRUE(in) << HDRF_DOCS_DIR "/faq.md";
+  std::string faq((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t i; (i = faq.find('`')) != std::string::npos;) faq.erase(i, 1);
+  int checked = 0;
+  for (const Wording* w : AllWordings()) {
+    std::vector<std::string> fragments;
+    std::string cur;
+    const std::string s = w->english;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s[i] == '%' && i + 1 < s.size() && s[i + 1] >= '1' && s[i + 1] <= '9') {
+        fragments.push_back(cur);
+        cur.clear();
+        ++i;
+      } else {
+        cur += s[i];
+      }
+    }
+    fragments.push_back(cur);
+    std::string first;
+    for (std::string f : fragments) {
+      while (!f.empty() && std::string(" :,.()").find(f.front()) != std::string::npos) f.erase(0, 1);
+      while (!f.empty() && std::string(" :,.()").find(f.back()) != std::string::npos) f.pop_back();
+      if (f.size() >= 10) {
+        first = f.substr(0, 40);
+        break;
+      }
+    }
+    if (first.empty()) first = s;
+    EXPECT_NE(faq.find(first), std::string::npos) << w->name << ": no entry for \"" << first << "\" in docs/faq.md";
+    ++checked;
+  }
+  EXPECT_GT(checked, 40);
 }
 
 }  // namespace

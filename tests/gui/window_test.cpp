@@ -8,6 +8,7 @@
 #include <QComboBox>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QTextBrowser>
 #include <QApplication>
 #include <QDockWidget>
 #include <QDir>
@@ -25,6 +26,7 @@
 #include <QTest>
 #include <QWizard>
 #include <QAction>
+#include <QTextBrowser>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -116,6 +118,32 @@ TEST(StudioWindow, ToolsMenuOpensTheCalibrationWizard) {
   EXPECT_TRUE(wizards[0]->isVisible());
   EXPECT_EQ(wizards[0]->currentId(), 0);
   wizards[0]->reject();
+}
+
+// Help opens the documentation in the studio's own window: the operator's guide first, then
+// the contents, each page rendered from the documentation's Markdown.
+TEST(StudioWindow, HelpMenuOpensTheDocumentation) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  FreshSettings();
+  StudioOptions o;
+  o.source = "synthetic:frames=20,size=160x120";
+  MainWindow w(o);
+  w.show();
+  QAction* guide = w.findChild<QAction*>("action_help_guide");
+  QAction* contents = w.findChild<QAction*>("action_help_contents");
+  ASSERT_NE(guide, nullptr);
+  ASSERT_NE(contents, nullptr);
+  guide->trigger();
+  auto* browser = w.findChild<QTextBrowser*>("documentation_browser");
+  ASSERT_NE(browser, nullptr);
+  EXPECT_TRUE(browser->window()->isVisible());
+  EXPECT_TRUE(browser->source().toLocalFile().endsWith("tutorials/scan-a-room.md")) << browser->source().toString().toStdString();
+  EXPECT_TRUE(browser->toPlainText().contains("Scanning a room")) << browser->toPlainText().left(200).toStdString();
+  contents->trigger();
+  EXPECT_EQ(w.findChildren<QTextBrowser*>("documentation_browser").size(), 1);  // one window, new page
+  EXPECT_TRUE(browser->source().toLocalFile().endsWith("index.md"));
+  EXPECT_TRUE(browser->toPlainText().contains("Calibration technicians"));
+  browser->window()->close();
 }
 
 TEST(StudioWindow, ScansShowsEveryViewAndKeepsSettings) {

@@ -15,6 +15,9 @@
 #include <QPushButton>
 #include <QRadioButton>
 #include <QSpinBox>
+#include <QTextBrowser>
+#include <QUrl>
+#include <QWizard>
 #include <QTest>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +78,31 @@ void ExpectProfileMatches(const std::string& serial, const radiometry::InverseRe
     EXPECT_NEAR(s.noise->sigma_s[c], noise.sigma_s[c], 0.1 * noise.sigma_s[c]) << what << c;
     EXPECT_NEAR(s.noise->sigma_c[c], noise.sigma_c[c], 0.1 * noise.sigma_c[c]) << what << c;
   }
+}
+
+// The wizard's Help button: a menu whose first entry opens the calibration guide in the
+// documentation window, rendered from its Markdown; About names the program.
+TEST(Wizard, HelpButtonOpensTheCalibrationGuide) {
+  CalibrationWizard w(WizardSettings{});
+  w.show();
+  auto* button = qobject_cast<QPushButton*>(w.button(QWizard::HelpButton));
+  ASSERT_NE(button, nullptr);
+  EXPECT_TRUE(button->isVisible());
+  ASSERT_NE(button->menu(), nullptr);
+  QAction* guide = w.findChild<QAction*>("action_help_guide");
+  ASSERT_NE(guide, nullptr);
+  guide->trigger();
+  auto* browser = w.findChild<QTextBrowser*>("documentation_browser");
+  ASSERT_NE(browser, nullptr);
+  EXPECT_TRUE(browser->source().toLocalFile().endsWith("tutorials/calibrate.md")) << browser->source().toString().toStdString();
+  EXPECT_TRUE(browser->toPlainText().contains("Calibrating a camera"));
+  // A relative link of the page, resolved as a click resolves it, opens inside the window.
+  browser->setSource(browser->source().resolved(QUrl("../calibration_wizard.md")));
+  EXPECT_TRUE(browser->source().toLocalFile().endsWith("docs/calibration_wizard.md") ||
+              browser->source().toLocalFile().endsWith("hdrfusion-studio/calibration_wizard.md"))
+      << browser->source().toString().toStdString();
+  EXPECT_TRUE(browser->toPlainText().contains("The calibration wizard"));
+  browser->window()->close();
 }
 
 TEST(Wizard, AutomaticOnTheSyntheticSensorSavesItsTrueResponse) {
