@@ -325,7 +325,8 @@ void VtkView::ReadBack() {
   st->vtkglClearColor(0, 0, 0, 1);
   st->vtkglClear(GL_COLOR_BUFFER_BIT);
   st->vtkglColorMask(true, true, true, true);
-  image_ = fbo_->toImage(false);
+  // OpenGL's rows run bottom to top; a QImage's top to bottom: flipped, the view is upright.
+  image_ = fbo_->toImage(true);
   st->vtkglBindFramebuffer(GL_FRAMEBUFFER, 0);
   image_.setDevicePixelRatio(RenderRatio());
   read_pending_ = false;

@@ -39,6 +39,7 @@
 #include "gui/main_window.h"
 #include "gui/vtk_view.h"
 #include "io/project.h"
+#include "mesh/mesh.h"
 #include "io/sequence.h"
 #include "sim/synthetic_source.h"
 #include "support/qt_wait.h"
@@ -118,6 +119,66 @@ TEST(StudioWindow, ToolsMenuOpensTheCalibrationWizard) {
   EXPECT_TRUE(wizards[0]->isVisible());
   EXPECT_EQ(wizards[0]->currentId(), 0);
   wizards[0]->reject();
+}
+
+// The 3-D view is upright: a surface below the first camera's optical axis (y > 0 in camera
+// coordinates, where the model's ray cast, a pinhole projection, puts it in the lower half of
+// its image) is drawn in the lower half of the view, one above it in the upper half, and a
+// surface to the camera's right on the right.
+TEST(StudioWindow, ThreeDViewIsUprightAsTheRayCast) {
+  if (!HaveDisplay()) GTEST_SKIP() << "no X display and no xvfb-run: cannot host OpenGL widgets";
+  VtkView v;
+  v.resize(400, 300);
+  v.show();
+  mesh::Mesh m;
+  std::vector<Rgb8> colours;
+  // Three quads 3 m in front of the camera: red below the axis, blue above, green right.
+  const auto quad = [&](float x0, float x1, float y0, float y1, Rgb8 c) {
+    const auto base = std::int32_t(m.position.size());
+    for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}) {
+      m.position.push_back({x, y, 3.0f});
+      m.normal.push_back({0, 0, -1});
+      m.radiance.push_back({1, 1, 1});
+      colours.push_back(c);
+    }
+    m.triangles.push_back({base, base + 1, base + 2});
+    m.triangles.push_back({base, base + 2, base + 3});
+  };
+  quad(-0.4f, 0.4f, 0.3f, 0.8f, Rgb8{230, 20, 20});
+  quad(-0.4f, 0.4f, -0.8f, -0.3f, Rgb8{20, 20, 230});
+  quad(0.6f, 1.0f, -0.2f, 0.2f, Rgb8{20, 230, 20});
+  v.SetMesh(m, colours);
+  v.ResetView();
+  const QImage im = v.Capture().convertToFormat(QImage::Format_RGB32);
+  ASSERT_FALSE(im.isNull());
+  ASSERT_TRUE(v.gl_error().isEmpty()) << v.gl_error().toStdString();
+  // The centroid of the pixels where one channel clearly dominates.
+  const auto centroid = [&](int channel) {
+    double sx = 0, sy = 0, n = 0;
+    for (int y = 0; y < im.height(); ++y)
+      for (int x = 0; x < im.width(); ++x) {
+        const QColor c(im.pixel(x, y));
+        const int ch[3] = {c.red(), c.green(), c.blue()};
+        if (ch[channel] > 60 && ch[channel] > 2 * ch[(channel + 1) % 3] && ch[channel] > 2 * ch[(channel + 2) % 3]) {
+          sx += x;
+          sy += y;
+          ++n;
+        }
+      }
+    return std::tuple{n, sx / std::max(n, 1.0), sy / std::max(n, 1.0)};
+  };
+  const auto [nr, rx, ry] = centroid(0);
+  const auto [ng, gx, gy] = centroid(1);
+  const auto [nb, bx, by] = centroid(2);
+  ASSERT_GT(nr, 100) << "the red quad is not drawn";
+  ASSERT_GT(nb, 100) << "the blue quad is not drawn";
+  ASSERT_GT(ng, 50) << "the green quad is not drawn";
+  EXPECT_GT(ry, im.height() / 2.0) << "the surface below the camera's axis is drawn in the upper half";
+  EXPECT_LT(by, im.height() / 2.0) << "the surface above the camera's axis is drawn in the lower half";
+  EXPECT_GT(gx, im.width() / 2.0) << "the surface to the camera's right is drawn on the left";
+  (void)rx;
+  (void)bx;
+  (void)gy;
 }
 
 // Help opens the documentation in the studio's own window: the operator's guide first, then
