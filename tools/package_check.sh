@@ -10,7 +10,8 @@
 #    is installed there with `apt-get install ./hdrfusion-studio_*.deb` (dependencies from
 #    Debian), and its programs are started: `hdrfusion --help`, a 10-frame scan of the
 #    synthetic room, `hdrfusion-studio --help`, and the studio and the wizard under Xvfb
-#    (xvfb installed beside the package for this), with a screenshot of the studio.
+#    (xvfb installed beside the package for this), with a screenshot of the studio; then
+#    `man hdrfusion` and the installed documentation the Help menus open.
 # The programs must start with the package's dependencies alone: a build made where the CUDA
 # toolkit is installed links its runtime statically (core/CMakeLists.txt), so the package
 # never needs the toolkit. Prints what it checked; exits non-zero at the first failure. The screenshot is left in
@@ -32,7 +33,10 @@ for f in ./usr/bin/hdrfusion ./usr/bin/hdrfusion-studio ./usr/bin/hdrfusion-cali
          ./usr/share/applications/hdrfusion-studio.desktop ./usr/share/applications/hdrfusion-calibration-wizard.desktop \
          ./usr/share/metainfo/io.github.hdrfusion.studio.metainfo.xml \
          ./usr/share/icons/hicolor/48x48/apps/hdrfusion-studio.png ./usr/share/icons/hicolor/scalable/apps/hdrfusion-studio.svg \
-         ./usr/share/hdrfusion/sensors/xtion_1406120314.json ./usr/share/hdrfusion/ocio/config.ocio; do
+         ./usr/share/hdrfusion/sensors/xtion_1406120314.json ./usr/share/hdrfusion/ocio/config.ocio \
+         ./usr/share/man/man1/hdrfusion.1 ./usr/share/man/man1/hdrfusion-studio.1 \
+         ./usr/share/man/man1/hdrfusion-calibration-wizard.1 ./usr/share/doc/hdrfusion-studio/index.md \
+         ./usr/share/doc/hdrfusion-studio/tutorials/scan-a-room.md ./usr/share/doc/hdrfusion-studio/LICENSE; do
   grep -qx "$f" "$out/files.txt" || { echo "package_check: $f is not in the package" >&2; exit 1; }
 done
 echo "package_check: depends: $(dpkg-deb -f "$deb" Depends)"
@@ -62,4 +66,8 @@ in_root "test -f /usr/share/qt6/translations/qtbase_de.qm"
 cp "$root_dir/tmp/studio_de.png" "$out/studio_installed_de.png"
 echo "package_check: the studio starts in German on a German system"
 in_root "timeout 20 xvfb-run -a hdrfusion-calibration-wizard --help | sed -n 1,3p"
+# The manual and the documentation the Help menus open (man-db comes as a recommended package).
+in_root "MANWIDTH=80 man hdrfusion | sed -n 1,4p && man -w hdrfusion-studio hdrfusion-calibration-wizard"
+in_root "test -f /usr/share/doc/hdrfusion-studio/index.md"
+echo "package_check: man hdrfusion works and the documentation is installed"
 echo "package_check: the installed studio's screenshot is $out/studio_installed.png"

@@ -8,6 +8,7 @@
 #include <optional>
 #include <unistd.h>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "cli/plot.h"
 #include "common/error.h"
@@ -95,12 +96,11 @@ Command AddCalibrateCommand(CLI::App& app) {
   return {cmd, [a] {
     // The output is checked before the sweep is read and fitted: a typo in --out must not
     // cost the whole fit.
+    // (The sweep's own sensor.json may be the output: the calibration completes it.)
     const fs::path out = a->out;
-    const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
-    if (!fs::is_directory(folder))
-      throw InputError(out, "its folder " + folder.string() + " does not exist (create it first)");
     if (fs::is_directory(out)) throw InputError(out, "is a folder; give the sensor.json file to write");
-    if (access(folder.c_str(), W_OK) != 0) throw InputError(out, "its folder " + folder.string() + " is not writable");
+    io::CheckOutputFile(out, {}, {".json"});
+    if (!a->plots.empty()) io::CheckOutputFolderEarly(a->plots, {a->sweep});
     const Sweep sweep = io::ReadSweep(a->sweep);
     SensorInfo sensor = io::ReadSensorJson(fs::path(a->sweep) / "sensor.json");
     std::map<double, int> per_exposure;
@@ -197,6 +197,7 @@ Command AddMergeCommand(CLI::App& app) {
   cmd->add_option("--sensor", a->sensor, "sensor.json with response (and noise)")->required();
   cmd->add_option("--out", a->out, "Output OpenEXR (float)")->required();
   return {cmd, [a] {
+    io::CheckOutputFile(a->out, {a->sweep, a->sensor}, {".exr"});
     const SensorInfo s = io::ReadSensorJson(a->sensor);
     if (!s.response)
       throw InputError(a->sensor, "has no 'response'; run hdrfusion calibrate first");

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "cli/interrupt.h"
 #include "common/error.h"
@@ -48,6 +49,7 @@ Command AddCaptureSweepCommand(CLI::App& app) {
     const fs::path out = a->out;
     if (!a->resume && fs::exists(out) && !(fs::is_directory(out) && fs::is_empty(out)))
       throw InputError(out, "exists and is not empty; choose a new folder (or --resume an interrupted capture)");
+    io::CheckOutputFolderEarly(out);
     if (a->resume && !fs::exists(out / "capture.json"))
       throw InputError(out / "capture.json", "is missing: nothing to resume (capture a new sweep without --resume)");
     auto camera = sensors::OpenSweepCamera(a->source);

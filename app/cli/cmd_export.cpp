@@ -102,6 +102,7 @@ Command AddExportCommand(CLI::App& app) {
     o.Check();
     // The export replaces mesh.ply: into the scan's own folder it took the raw mesh, and the
     // next export of that folder baked its texture from the levelled one.
+    io::CheckOutputFolderEarly(a->out);
     if (io::IsWithin(a->out, a->in))
       throw InputError(a->out, "is the scan being exported: the export's mesh.ply would replace the scan's own; "
                                "choose another --out");

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "common/error.h"
 #include "io/exr.h"
@@ -30,6 +31,8 @@ Command AddRadianceCommand(CLI::App& app) {
   cmd->add_option("--out", a->out, "Output OpenEXR file")->required();
   cmd->add_option("--device", a->device, "cpu or cuda")->check(CLI::IsMember({"cpu", "cuda"}));
   return {cmd, [a] {
+    // Before any work: an output that is an input, or OpenEXR under another format's name.
+    io::CheckOutputFile(a->out, {a->image, a->sensor}, {".exr"});
     radiometry::InverseResponse inverse;
     if (!a->sensor.empty() && io::ReadSensorJson(a->sensor).response) {
       inverse = *io::ReadSensorJson(a->sensor).response;

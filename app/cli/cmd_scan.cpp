@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
@@ -196,8 +197,9 @@ Command AddScanCommand(CLI::App& app) {
     const tonemap::Spec tone_spec = tonemap::ParseSpec(a->tone);
     const tonemap::OperatorDecl& tone_decl = tonemap::FindOperator(tone_spec.op);
     const tonemap::Params tone_params = tonemap::ResolveParams(tone_decl, tone_spec.values);
-    auto source = sensors::OpenAnySource(a->source, a->response);
     const fs::path out = a->out;
+    io::CheckOutputFolderEarly(out);  // before the source is opened: a folder that cannot be made costs nothing
+    auto source = sensors::OpenAnySource(a->source, a->response);
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) throw InputError(out, "cannot create the output folder: " + ec.message());

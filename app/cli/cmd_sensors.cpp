@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
@@ -82,6 +83,8 @@ Command AddRecordCommand(CLI::App& app) {
       throw InputError(out, "exists and is not empty; choose a new name");
     if (!out.parent_path().empty() && !fs::is_directory(out.parent_path()))
       throw InputError(out.parent_path(), "folder does not exist");
+    if (oni) io::CheckOutputFile(out, {}, {".oni"});
+    else io::CheckOutputFolderEarly(out);
 
     sensors::LiveFrameSource live(o);
     for (const std::string& w : live.sensor().warnings) std::fprintf(stderr, "record: warning: %s\n", Printable(w).c_str());

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "io/output_file.h"
 #include "cli/commands.h"
 #include "io/source_spec.h"
 #include "cli/progress.h"
@@ -92,6 +93,7 @@ Command AddSimulateCommand(CLI::App& app) {
       o.noise = *s.noise;
     }
     o.depth.enabled = !a->exact_depth;
+    io::CheckOutputFolderEarly(a->out, {a->response});
     sim::SyntheticSource source(o);
     io::SequenceWriter writer(a->out, source.sensor(), {.write_hdr = true});
     Progress progress("simulate", source.size());

@@ -75,6 +75,7 @@ Command AddTonemapCommand(CLI::App& app) {
     const std::filesystem::path out(a->out);
     const std::string ext = out.extension().string();
     if (ext != ".png" && ext != ".exr") throw SettingError("--out", a->out + ": the output must end in .png or .exr");
+    io::CheckOutputFile(out, {a->in});
     const tonemap::OperatorDecl& decl = tonemap::FindOperator(a->op);
     tonemap::Params values;
     for (const auto& s : a->sets) tonemap::ParseSetting(decl, s, values);

@@ -72,6 +72,55 @@ void CheckReplaceable(const fs::path& file) {
   throw InputError(file, "is a device, pipe or socket, not a regular file: an output cannot replace it");
 }
 
+namespace {
+
+// Throws unless `folder` is a folder this process can create files in.
+void CheckWritableFolder(const fs::path& folder, const fs::path& named) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw InputError(named, "its folder " + folder.string() + " does not exist (create it first)");
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw InputError(named, "its folder " + folder.string() + " cannot be written (" + std::strerror(errno) + ")");
+}
+
+void CheckNotAnInput(const fs::path& out, const std::vector<fs::path>& inputs) {
+  for (const fs::path& in : inputs)
+    if (IsWithin(out, in))
+      throw InputError(out, "is " + (fs::weakly_canonical(out) == fs::weakly_canonical(in) ? std::string("") : "inside ") +
+                                "an input of this command (" + in.string() + "): the output would replace what it reads");
+}
+
+}  // namespace
+
+void CheckOutputFile(const fs::path& file, const std::vector<fs::path>& inputs, const std::vector<std::string>& extensions) {
+  if (!extensions.empty()) {
+    const std::string ext = file.extension().string();
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+      std::string list;
+      for (const std::string& e : extensions) list += (list.empty() ? "" : " or ") + e;
+      throw InputError(file, "the output's name must end in " + list + " (the format written)");
+    }
+  }
+  CheckReplaceable(file);
+  CheckNotAnInput(file, inputs);
+  CheckWritableFolder(file.has_parent_path() ? file.parent_path() : fs::path("."), file);
+}
+
+void CheckOutputFolderEarly(const fs::path& folder, const std::vector<fs::path>& inputs) {
+  CheckNotAnInput(folder, inputs);
+  std::error_code ec;
+  fs::path existing = fs::absolute(folder, ec);
+  while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.root_path()) existing = existing.parent_path();
+  if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+    throw InputError(folder, "is not a folder: give a folder for the outputs");
+  if (!fs::is_directory(existing, ec))
+    throw InputError(folder, "cannot be made: " + existing.string() + " is a file, not a folder");
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    throw InputError(folder, (existing == fs::absolute(folder, ec) ? std::string("cannot be written (")
+                                                                    : "cannot be made in " + existing.string() + " (") +
+                                 std::strerror(errno) + ")");
+}
+
 bool IsStagingFile(const fs::path& p) {
   const std::string n = p.filename().string();
   const std::size_t tail = 1 + kRandomChars + (sizeof kSuffix - 1);

@@ -87,4 +87,18 @@ void CheckOutputFolder(const std::filesystem::path& folder);
 // does not exist.
 bool IsWithin(const std::filesystem::path& path, const std::filesystem::path& input);
 
+// The checks a command makes on an output file before any work, so that a typo or a wrong
+// path never costs the work: the file's folder exists and can be written, the file is not a
+// link, folder or device (CheckReplaceable), it is none of `inputs` nor inside one
+// (IsWithin), and where `extensions` is not empty its name ends in one of them (".exr"), so
+// that one format's data is never written under another's name. Throws InputError naming
+// the file and what is wrong.
+void CheckOutputFile(const std::filesystem::path& file, const std::vector<std::filesystem::path>& inputs = {},
+                     const std::vector<std::string>& extensions = {});
+
+// The same for an output folder a command creates or fills: the folder (or, where it does
+// not exist yet, its nearest existing parent) is a folder that can be written, and it is
+// none of `inputs` nor inside one.
+void CheckOutputFolderEarly(const std::filesystem::path& folder, const std::vector<std::filesystem::path>& inputs = {});
+
 }  // namespace hdrf::io

@@ -17,6 +17,7 @@
 
 #include "common/error.h"
 #include "io/asset_export.h"
+#include <iterator>
 #include "io/exr.h"
 #include "io/ply.h"
 #include "io/image_io.h"
@@ -96,6 +97,53 @@ TEST(Cli, RadianceRefusesMissingCalibrationAndHonoursSrgbFallback) {
   const RadianceImage img = io::ReadExr(dir / "r.exr");
   EXPECT_FLOAT_EQ(img(2, 2).x, 0.5f);  // red 255 -> 1.0 linear, / 2 ms
   EXPECT_FLOAT_EQ(img(2, 2).z, 0.0f);
+}
+
+// An output is checked before any work: one that is the command's input, data under
+// another format's name, a link, a folder that is a file, a plots folder that is a file.
+// Each is refused naming the path, and the input is left byte for byte as it was.
+TEST(Cli, OutputsThatAreInputsOrMisnamedAreRefusedBeforeAnyWork) {
+  test::TempDir dir;
+  const std::string png = (dir / "c.png").string();
+  cv::imwrite(png, cv::Mat(4, 4, CV_8UC3, cv::Scalar(0, 80, 255)));
+  const auto bytes = [](const std::string& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string before = bytes(png);
+  RunResult r = RunCli("radiance " + png + " --response srgb --exposure 2 --out " + png);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("must end in .exr"), std::string::npos) << r.output;
+  EXPECT_EQ(bytes(png), before) << "the input image was replaced";
+  r = RunCli("radiance " + png + " --response srgb --exposure 2 --out " + (dir / "r.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(fs::exists(dir / "r.png")) << "OpenEXR data was written under a .png name";
+  const std::string exr = (dir / "r.exr").string();
+  ASSERT_EQ(RunCli("radiance " + png + " --response srgb --exposure 2 --out " + exr).status, 0);
+  const std::string exr_before = bytes(exr);
+  r = RunCli("tonemap " + exr + " --out " + exr);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("is an input of this command"), std::string::npos) << r.output;
+  EXPECT_EQ(bytes(exr), exr_before) << "the tone-mapped image replaced its input";
+  fs::create_symlink(dir / "elsewhere.png", dir / "link.png");
+  r = RunCli("tonemap " + exr + " --out " + (dir / "link.png").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("symbolic link"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "elsewhere.png")) << "written through a link";
+  r = RunCli("scan synthetic:frames=3,size=64x48 --out " + png + "/scan");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("is a file, not a folder"), std::string::npos) << r.output;
+  // calibrate: a --plots that is a file is refused before the fit, and no sensor.json written.
+  const std::string sweep = (dir / "sweep").string();
+  ASSERT_EQ(RunCli("simulate --out " + sweep + " --sweep --sweep-repeats 2 --size 64x48").status, 0);
+  r = RunCli("calibrate " + sweep + " --out " + (dir / "s.json").string() + " --plots " + png);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("is not a folder"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("response ("), std::string::npos) << "the fit ran before the output was checked";
+  EXPECT_FALSE(fs::exists(dir / "s.json"));
+  r = RunCli("calibrate " + sweep + " --out " + (dir / "s.txt").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("must end in .json"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UnknownSubcommandAndMissingArgumentsFail) {
