@@ -211,6 +211,8 @@ Command AddScanCommand(CLI::App& app) {
                                        a->save + "'");
     // An output that may not be replaced (a link, a device, a folder) is refused before the scan.
     jobs::ScanJob::CheckOutputs(out, save, a->source);
+    // The folder is this scan's until it ends: a second scan into it is refused at once.
+    const io::FolderLock lock(out);
     // Unfinished scans a crash left behind are offered, newest first.
     for (const fs::path& r : io::FindRecoveryFiles())
       if (project == std::nullopt || fs::absolute(r) != fs::absolute(a->resume)) {

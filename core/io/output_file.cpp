@@ -6,6 +6,7 @@
 #include <ext/stdio_filebuf.h>
 #include <fcntl.h>
 #include <random>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -119,6 +120,43 @@ void CheckOutputFolderEarly(const fs::path& folder, const std::vector<fs::path>&
     throw InputError(folder, (existing == fs::absolute(folder, ec) ? std::string("cannot be written (")
                                                                     : "cannot be made in " + existing.string() + " (") +
                                  std::strerror(errno) + ")");
+}
+
+FolderLock::FolderLock(const fs::path& folder) : file_(folder / ".hdrfusion-lock") {
+  // Locked, and still the file at that name: a holder that removed the file as this one
+  // opened it leaves a lock on a file nobody else will see, so take the new file instead.
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd_ < 0) throw InputError(folder, std::string("cannot take the folder's lock: ") + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      char pid[32] = {};
+      const ssize_t n = ::pread(fd_, pid, sizeof pid - 1, 0);
+      ::close(fd_);
+      fd_ = -1;
+      std::string who = n > 0 ? std::string(pid, std::size_t(n)) : std::string();
+      while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+      throw InputError(folder, "another hdrfusion program" + (who.empty() ? std::string() : " (process " + who + ")") +
+                                   " is writing into this folder; wait for it to finish or choose another folder");
+    }
+    struct stat held {}, named {};
+    if (::fstat(fd_, &held) == 0 && ::stat(file_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      const std::string me = std::to_string(::getpid()) + "\n";
+      if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, me.data(), me.size(), 0) < 0) {
+        // The process id only helps the message of a second program; the lock holds without it.
+      }
+      return;
+    }
+    ::close(fd_);
+    fd_ = -1;
+  }
+  throw InputError(folder, "cannot take the folder's lock: it keeps changing");
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ < 0) return;
+  ::unlink(file_.c_str());  // while held: a program waiting on this file then takes a new one
+  ::close(fd_);
 }
 
 bool IsStagingFile(const fs::path& p) {

@@ -96,6 +96,23 @@ bool IsWithin(const std::filesystem::path& path, const std::filesystem::path& in
 void CheckOutputFile(const std::filesystem::path& file, const std::vector<std::filesystem::path>& inputs = {},
                      const std::vector<std::string>& extensions = {});
 
+// An exclusive claim on an output folder for as long as the object lives: two programs
+// writing the same folder at once would mix their outputs (the last writer winning file by
+// file). Takes an advisory lock (flock) on `folder`/.hdrfusion-lock, which it creates and
+// removes; throws InputError naming the folder, and the holder's process id, where another
+// holds it. The folder must exist.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::filesystem::path& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  std::filesystem::path file_;
+  int fd_ = -1;
+};
+
 // The same for an output folder a command creates or fills: the folder (or, where it does
 // not exist yet, its nearest existing parent) is a folder that can be written, and it is
 // none of `inputs` nor inside one.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 #include <functional>
 #include <map>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "io/asset_export.h"
 #include <iterator>
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "io/ply.h"
 #include "io/image_io.h"
 #include "io/sensor_json.h"
@@ -144,6 +146,26 @@ TEST(Cli, OutputsThatAreInputsOrMisnamedAreRefusedBeforeAnyWork) {
   r = RunCli("calibrate " + sweep + " --out " + (dir / "s.txt").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("must end in .json"), std::string::npos) << r.output;
+}
+
+// Two scans into one folder: the second is refused at once, naming the folder, while the
+// first holds it; once it is released a scan goes ahead, and leaves no lock file behind.
+TEST(Cli, ASecondScanIntoTheSameFolderIsRefused) {
+  test::TempDir dir;
+  const fs::path out = dir / "scan";
+  fs::create_directories(out);
+  {
+    const io::FolderLock held(out);  // as a running scan holds it
+    const RunResult r = RunCli("scan synthetic:frames=3,size=64x48 --out " + out.string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("is writing into this folder"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("process " + std::to_string(::getpid())), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out / "trajectory.txt"));
+  }
+  const RunResult r = RunCli("scan synthetic:frames=3,size=64x48 --out " + out.string() + " --autosave 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "trajectory.txt"));
+  EXPECT_FALSE(fs::exists(out / ".hdrfusion-lock"));
 }
 
 TEST(Cli, UnknownSubcommandAndMissingArgumentsFail) {
