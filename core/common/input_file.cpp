@@ -1,5 +1,6 @@
 #include "common/input_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -117,6 +118,39 @@ std::optional<ImageHeader> PeekImageHeader(const fs::path& file, const std::stri
       at += 2 + len;
     }
     return std::nullopt;  // no frame header found: the decoder will say what is wrong
+  }
+  if (b.size() >= 8 && (b.compare(0, 4, "II*\0", 4) == 0 || b.compare(0, 4, "MM\0*", 4) == 0)) {
+    // TIFF: the first image file directory's width, length, bits and samples per pixel.
+    const bool little = b[0] == 'I';
+    const auto u16 = [&](std::size_t at) -> std::uint32_t {
+      if (at + 2 > b.size()) throw InputError(file, "is a TIFF file cut short in its header");
+      const auto x = std::uint8_t(b[at]), y = std::uint8_t(b[at + 1]);
+      return little ? std::uint32_t(x) | std::uint32_t(y) << 8 : std::uint32_t(x) << 8 | y;
+    };
+    const auto u32 = [&](std::size_t at) -> std::uint32_t {
+      return little ? u16(at) | u16(at + 2) << 16 : u16(at) << 16 | u16(at + 2);
+    };
+    const std::size_t ifd = u32(4);
+    const std::uint32_t entries = u16(ifd);
+    std::uint32_t w = 0, h = 0, bits = 8, samples = 1;
+    for (std::uint32_t e = 0; e < entries; ++e) {
+      const std::size_t at = ifd + 2 + 12 * std::size_t(e);
+      const std::uint32_t tag = u16(at), type = u16(at + 2), count = u32(at + 4);
+      // A SHORT value sits in the first half of the value field; a LONG fills it.
+      const auto value = [&] { return type == 3 ? u16(at + 8) : u32(at + 8); };
+      if (tag == 256) w = value();
+      else if (tag == 257) h = value();
+      else if (tag == 277) samples = value();
+      else if (tag == 258) bits = count <= (type == 3 ? 2u : 1u) ? value() : u16(u32(at + 8));
+    }
+    if (w == 0 || h == 0 || w > 0x7fffffffu || h > 0x7fffffffu)
+      throw InputError(file, "is a TIFF file whose header gives no usable size (" + std::to_string(w) + "x" +
+                                 std::to_string(h) + ")");
+    ImageHeader hd;
+    hd.width = int(w);
+    hd.height = int(h);
+    hd.bytes_per_pixel = int(std::clamp<std::uint32_t>(samples, 1, 16) * std::clamp<std::uint32_t>((bits + 7) / 8, 1, 8));
+    return hd;
   }
   return std::nullopt;
 }

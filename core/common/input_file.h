@@ -32,8 +32,9 @@ std::uintmax_t CheckInputFile(const std::filesystem::path& file, std::uintmax_t 
 // The whole file, after the same checks, read through the one descriptor that was checked.
 std::string ReadInputFile(const std::filesystem::path& file, std::uintmax_t max_bytes, const char* what);
 
-// Dimensions and bytes per pixel (all channels, decoded) from an image's header: PNG and
-// JPEG are read, others give nullopt. Throws InputError for a header that is not one.
+// Dimensions and bytes per pixel (all channels, decoded) from an image's header: PNG, JPEG
+// and TIFF are read, others give nullopt (and are not read: the readers decode only what
+// they can size first). Throws InputError for a header that is not one.
 struct ImageHeader {
   int width = 0, height = 0;
   int bytes_per_pixel = 0;

@@ -1,3 +1,4 @@
+#include "common/host_memory.h"
 #include "io/asset_export.h"
 
 #include "io/project.h"
@@ -298,6 +299,17 @@ AssetResult ExportAsset(const ScanData& scan, const AssetOptions& o, const fs::p
   if (scan.keyframes) camera = scan.keyframes->sensor.camera;
   if ((o.render_width > 0) && !camera.Valid())
     throw SettingError("render", "renders need the scan's camera (keyframes.json and sensor.json in the scan folder)");
+  // A render's memory, checked before any work: 16384 x 16384 is allowed and needs about
+  // 28 GB (the radiance, alpha and depth images, the rasteriser's buffers and the encoders'
+  // copies: about 104 bytes a pixel).
+  if (o.render_width > 0) {
+    const std::uint64_t need = std::uint64_t(o.render_width) * std::uint64_t(o.render_height) * kRenderBytesPerPixel;
+    if (const auto free = AvailableHostBytes(); free && need > *free)
+      throw SettingError("render", "a " + std::to_string(o.render_width) + "x" + std::to_string(o.render_height) +
+                                       " render needs about " + std::to_string((need + (1u << 30) - 1) >> 30) +
+                                       " GiB of memory, and the machine has " + std::to_string(*free >> 30) +
+                                       " GiB free: render a smaller size");
+  }
   // Checked whether or not a render is asked for: the pose is looked up either way.
   if (o.render_frame >= int(std::max<std::size_t>(1, scan.trajectory.size())))
     throw SettingError("render frame", "is " + std::to_string(o.render_frame) + ", but the scan has " +

@@ -6,6 +6,7 @@
 // into place at the end: a failure or a cancel leaves the output folder as it was.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -21,6 +22,11 @@
 #include "mesh/world_frame.h"
 
 namespace hdrf::io {
+
+// The host memory a render takes per pixel, about: the radiance, alpha and depth images, the
+// rasteriser's buffers and the encoders' copies. A render larger than the free memory allows
+// is refused before any work.
+inline constexpr std::uint64_t kRenderBytesPerPixel = 104;
 
 struct AssetOptions {
   bool clean = true;

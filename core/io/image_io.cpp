@@ -31,10 +31,12 @@ cv::Mat Load(const std::filesystem::path& file, const HeaderCheck& check_header)
   const std::string bytes = ReadInputFile(file, kMaxImageBytes, "an image");
   // (OpenCV answers an empty buffer with an assertion, which was shown as the message)
   if (bytes.empty()) throw InputError(file, "is empty (0 bytes), not an image");
-  if (const std::optional<ImageHeader> h = PeekImageHeader(file, bytes)) {
-    CheckImageDimensions(file, h->width, h->height, h->bytes_per_pixel);
-    if (check_header) check_header(h->width, h->height);
-  }
+  // Only what can be sized from its header is decoded: a few kilobytes of another format can
+  // describe gigabytes of pixels.
+  const std::optional<ImageHeader> h = PeekImageHeader(file, bytes);
+  if (!h) throw InputError(file, "is not a PNG, JPEG or TIFF image (the formats read)");
+  CheckImageDimensions(file, h->width, h->height, h->bytes_per_pixel);
+  if (check_header) check_header(h->width, h->height);
   cv::Mat m;
   try {
     m = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), cv::IMREAD_UNCHANGED);

@@ -68,7 +68,12 @@ KeyframeSet ReadKeyframes(const fs::path& dir) {
       const std::string rel = k.at("file").get<std::string>();
       if (rel.find("..") != std::string::npos || fs::path(rel).is_absolute())
         throw InputError(file, "keyframe " + std::to_string(f.index) + ": file must lie inside the scan folder");
-      f.color = ReadColorImage(dir / rel);
+      const PinholeCamera& cam = set.sensor.camera;
+      f.color = ReadColorImage(dir / rel, [&](int w, int h) {  // from the header, before decoding
+        if (w != cam.width || h != cam.height)
+          throw InputError(dir / rel, "is " + std::to_string(w) + "x" + std::to_string(h) + ", the camera in sensor.json " +
+                                          std::to_string(cam.width) + "x" + std::to_string(cam.height));
+      });
       if (f.color.width() != set.sensor.camera.width || f.color.height() != set.sensor.camera.height)
         throw InputError(dir / rel, "is " + std::to_string(f.color.width()) + "x" + std::to_string(f.color.height()) +
                                         ", the camera in sensor.json " + std::to_string(set.sensor.camera.width) + "x" +

@@ -46,7 +46,14 @@ radiometry::Sweep ReadSweep(const std::filesystem::path& folder) {
       throw InputError(folder / "exposure.txt",
                        std::string("no exposure for colour frame at timestamp ") + buf);
     }
-    s.images.push_back(ReadColorImage(f.color_path));
+    // The size is checked from the header, before a frame is decoded.
+    const PinholeCamera& cam = seq.sensor().camera;
+    s.images.push_back(ReadColorImage(f.color_path, [&](int w, int h) {
+      if (w != cam.width || h != cam.height)
+        throw InputError(f.color_path, "image is " + std::to_string(w) + "x" + std::to_string(h) +
+                                           " but sensor.json says " + std::to_string(cam.width) + "x" +
+                                           std::to_string(cam.height));
+    }));
     const auto& im = s.images.back();
     if (im.width() != seq.sensor().camera.width || im.height() != seq.sensor().camera.height)
       throw InputError(f.color_path, "image size does not match sensor.json");

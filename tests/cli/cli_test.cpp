@@ -19,6 +19,7 @@
 #include "common/error.h"
 #include "io/asset_export.h"
 #include <iterator>
+#include "common/host_memory.h"
 #include "io/exr.h"
 #include "io/output_file.h"
 #include "io/ply.h"
@@ -751,6 +752,15 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
       EXPECT_EQ(r.status, 1) << frame << render << ": " << r.output;
       EXPECT_NE(r.output.find("30 poses (frames 0 to 29)"), std::string::npos) << r.output;
     }
+  // A render the free memory cannot hold (16384x16384, the largest allowed, needs about
+  // 28 GB): refused before any work, saying how much it needs.
+  if (const auto free = AvailableHostBytes(); free && *free < 16384ull * 16384 * io::kRenderBytesPerPixel) {
+    r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --render 16384x16384");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("render needs about"), std::string::npos) << r.output;
+  } else {
+    std::printf("(the 16384x16384 render fits this machine's free memory: its refusal is not tried)\n");
+  }
   EXPECT_FALSE(std::filesystem::exists(dir / "x"));
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "last").string() + " --render-frame 29");
   EXPECT_EQ(r.status, 0) << r.output;

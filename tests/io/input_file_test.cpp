@@ -19,6 +19,7 @@
 #include "io/ply.h"
 #include "io/sensor_json.h"
 #include "io/sequence.h"
+#include "io/sweep.h"
 #include "io/tum.h"
 #include "support/test_support.h"
 
@@ -78,6 +79,52 @@ TEST(InputLimits, ImageSizesAreCheckedFromTheHeaderBeforeDecoding) {
   // A header too short to be a PNG's is named as such.
   test::WriteText(dir / "cut.png", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
   ExpectErrorContaining([&] { ReadColorImage(dir / "cut.png"); }, {"cut.png", "without its header"});
+}
+
+// A TIFF claiming 16000x16000 pixels in a few hundred bytes.
+void WriteLyingTiff(const fs::path& file, std::uint32_t w, std::uint32_t h) {
+  std::string b = "II*";
+  b += '\0';
+  const auto u16 = [&](std::uint32_t v) { b += char(v & 255), b += char(v >> 8 & 255); };
+  const auto u32 = [&](std::uint32_t v) { u16(v & 0xffff), u16(v >> 16); };
+  u32(8);
+  const std::uint32_t tags[][4] = {{256, 4, 1, w}, {257, 4, 1, h}, {258, 3, 1, 16}, {277, 3, 1, 1}};
+  u16(4);
+  for (const auto& t : tags) {
+    u16(t[0]), u16(t[1]), u32(t[2]);
+    if (t[1] == 3) u16(t[3]), u16(0);
+    else u32(t[3]);
+  }
+  u32(0);
+  b += std::string(64, '\0');
+  test::WriteText(file, b);
+}
+
+// Every path that reads frames sizes them from their header first: a sweep (calibrate,
+// merge) and a depth frame in TIFF, as a sequence's colour frame already is; and an image
+// in a format whose header is not read is refused rather than decoded.
+TEST(InputLimits, EveryFramePathSizesItsImagesFromTheHeader) {
+  TempDir dir;
+  WriteSequence(dir / "seq");
+  const SequenceReader seq(dir / "seq");
+  const long before = PeakRssKib();
+  // A sweep (the sequence layout with exposures) whose second frame claims 16000x16000.
+  WriteLyingPng(seq.frames()[1].color_path, 16000, 16000);
+  ExpectErrorContaining([&] { ReadSweep(dir / "seq"); },
+                        {seq.frames()[1].color_path.string(), "image is 16000x16000 but sensor.json says 64x48"});
+  // A TIFF depth frame claiming the same.
+  WriteLyingTiff(dir / "depth.tif", 16000, 16000);
+  ExpectErrorContaining([&] { ReadDepthImage(dir / "depth.tif", [](int w, int h) {
+                          if (w != 64 || h != 48) throw InputError("depth.tif", "image is " + std::to_string(w) + "x" +
+                                                                                    std::to_string(h));
+                        }); },
+                        {"depth.tif", "image is 16000x16000"});
+  const long grew_mib = (PeakRssKib() - before) / 1024;
+  std::printf("peak memory grew by %ld MiB while refusing both images\n", grew_mib);
+  EXPECT_LT(grew_mib, 64);
+  // A format whose header is not read (BMP) is not decoded.
+  test::WriteText(dir / "x.bmp", "BM" + std::string(100, '\0'));
+  ExpectErrorContaining([&] { ReadColorImage(dir / "x.bmp"); }, {"x.bmp", "is not a PNG, JPEG or TIFF image"});
 }
 
 TEST(InputLimits, SpecialFilesAndPathsOutsideTheSequenceAreRefused) {
