@@ -2,13 +2,16 @@
 // studio's views share.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <cstdio>
 #include <limits>
 #include <vector>
 
 #include "tonemap/display.h"
 #include "common/error.h"
+#include "tonemap/mantiuk06/mantiuk06.h"
 #include "tonemap/operator.h"
 
 namespace hdrf::tonemap {
@@ -106,6 +109,28 @@ TEST(Mantiuk08, BrightnessHoldSteadiesAViewThatTurnsAndThenAdapts) {
   free->Map(TwoSurfaces(0.2), b, FrameTime::Still());
   EXPECT_NEAR(ShownMeanLog(a), ShownMeanLog(b), 1e-9);
   EXPECT_THROW(d.make(ResolveParams(d, {{"hold_hz", 0}}), Device::kCpu), SettingError);
+}
+
+}  // namespace
+}  // namespace hdrf::tonemap
+
+namespace hdrf::tonemap {
+namespace {
+
+// A uniform image has no contrast to map: mantiuk06 shows it as one grey (the middle of the
+// display's range), on every size, instead of stretching the solver's rounding across the
+// display as stripes (seen at 640x480: seven bands of 16 to 51 in 8 bits).
+TEST(Mantiuk06, AUniformImageIsShownAsOneMidGrey) {
+  for (auto [w, h] : {std::pair{64, 48}, {640, 480}, {333, 211}}) {
+    RadianceImage in(w, h);
+    for (std::size_t i = 0; i < in.size(); ++i) in[i] = {0.21f, 0.21f, 0.21f};
+    Image<Float3> out(w, h);
+    m06::Map(in, out, m06::Options{});
+    float lo = 1e30f, hi = -1e30f;
+    for (std::size_t i = 0; i < out.size(); ++i) lo = std::min(lo, out[i].y), hi = std::max(hi, out[i].y);
+    EXPECT_LE(hi - lo, 1e-4f) << w << "x" << h << ": " << lo << " .. " << hi;
+    EXPECT_NEAR(std::log10(hi), -1.15, 0.05) << w << "x" << h;  // half the display's 2.3 log10 units
+  }
 }
 
 }  // namespace

@@ -298,7 +298,8 @@ Result Map(const RadianceImage& in, Image<Float3>& out, const Options& o) {
   // Display: the 0.1 % to 99.9 % range of the result spans the display's 2.3 log10 units.
   float l_lo = 0, l_hi = 0;
   Quantiles(x, valid, 0.001, 0.999, &l_lo, &l_hi);
-  const float span = std::max(l_hi - l_lo, 1e-6f);
+  float span = 0;
+  DisplaySpan(l_lo, l_hi, &l_lo, &span);
   const float sat = float(o.saturation);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(n); ++i) {

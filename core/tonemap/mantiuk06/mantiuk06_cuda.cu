@@ -266,7 +266,8 @@ Result CudaWorkspace::Map(const RadianceImage& in, Image<Float3>& out, const Opt
   valid.Download(hv.data());
   float l_lo = 0, l_hi = 0;
   Quantiles(hx, hv, 0.001, 0.999, &l_lo, &l_hi);
-  const float span = std::max(l_hi - l_lo, 1e-6f);
+  float span = 0;
+  DisplaySpan(l_lo, l_hi, &l_lo, &span);
   const float sat = float(o.saturation);
   DeviceBuffer<Float3>& d_out = m.out;
   {

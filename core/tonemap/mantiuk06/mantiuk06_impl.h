@@ -116,6 +116,21 @@ HDRF_HD float EqualiseScale(float rx, float ry, const float* cdf, int bins, floa
 // The display mapping of the solved log luminance x: [lo, hi] onto the top 2.3 log10 units,
 // colour ratios raised to the saturation; display-linear, clamped to [0, 1].
 constexpr float kDisplayRange = 2.3f;
+// The display range a result spans: its 0.1 % to 99.9 % range (lo, lo + span) mapped onto
+// the display's kDisplayRange log10 units. A result flatter than kFlatResult (a uniform
+// image: what is left is the solver's rounding) is shown as one mid grey, not its rounding
+// stretched into stripes.
+inline constexpr float kFlatResult = 1e-3f;
+HDRF_HD void DisplaySpan(float l_lo, float l_hi, float* lo, float* span) {
+  if (l_hi - l_lo < kFlatResult) {
+    *span = kDisplayRange;
+    *lo = 0.5f * (l_lo + l_hi) - 0.5f * kDisplayRange;
+  } else {
+    *lo = l_lo;
+    *span = l_hi - l_lo;
+  }
+}
+
 HDRF_HD Float3 DisplayPixel(Float3 c, float x, float lo, float span, float clip, float sat) {
   const float y = powf(10.f, (x - lo) / span * kDisplayRange - kDisplayRange);
   const float lum = fmaxf(Luminance(c), clip);
