@@ -181,8 +181,14 @@ PreparedMesh PrepareMesh(const ScanData& scan, const AssetOptions& o) {
   PreparedMesh p;
   mesh::CleanOptions co = o.clean_options;
   if (!o.clean) co.min_piece_area = 0, co.max_hole_perimeter = 0, co.weld_tolerance = 0, co.fill_radiance = false;
+  if (scan.mesh.triangles.empty())
+    throw InputError(scan.source, "the scan's mesh has no triangles: there is nothing to export");
   p.c = mesh::Clean(scan.mesh, co);
   mesh::CleanMesh& c = p.c;
+  // (An empty mesh went on to write a 0x0 texture, and the error named a hidden staging file.)
+  if (c.mesh.triangles.empty())
+    throw SettingError("min-piece-area", "nothing is left after the clean-up: every piece of the mesh is smaller than " +
+                                             Sig(co.min_piece_area, 4) + " m² (export keeps pieces at least that large)");
   const mesh::WorldFrame& wf = p.wf;
   mesh::WorldFrameOptions wo;
   wo.up = o.up;

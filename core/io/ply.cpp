@@ -1,6 +1,7 @@
 #include "io/ply.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -124,6 +125,14 @@ mesh::Mesh ReadPly(const std::filesystem::path& file, std::vector<std::uint8_t>*
     std::memcpy(&m.normal[i], rec + 12, 12);
     std::memcpy(&m.radiance[i], rec + 27, 12);
     if (flags_out && record == 40) (*flags_out)[i] = std::uint8_t(rec[39]);
+    // A damaged file's values would travel on into every export: positions and normals must
+    // be finite, radiance finite and not negative (0 is "never seen").
+    const Float3& p = m.position[i], &n = m.normal[i], &r = m.radiance[i];
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(n.x) && std::isfinite(n.y) &&
+          std::isfinite(n.z)))
+      throw InputError(file, "vertex " + std::to_string(i) + " has a position or normal that is not a finite number");
+    if (!(r.x >= 0 && r.y >= 0 && r.z >= 0 && std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z)))
+      throw InputError(file, "vertex " + std::to_string(i) + " has a radiance that is negative or not a finite number");
   }
   m.triangles.resize(nf);
   for (std::size_t i = 0; i < nf; ++i) {

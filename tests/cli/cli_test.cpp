@@ -741,6 +741,12 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --crop 0,0,0,1,1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--crop"), std::string::npos) << r.output;
+  // A clean-up that leaves nothing: said so, naming the setting (it wrote a 0x0 texture and
+  // named a hidden staging file).
+  r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --min-piece-area 1e9");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("nothing is left after the clean-up"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(".export-"), std::string::npos) << r.output;
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --tone mantiuk08,peak=1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;

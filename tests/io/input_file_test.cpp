@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <limits>
+#include <cstring>
 #include <fstream>
 
 #include <ImfHeader.h>
@@ -152,6 +154,33 @@ TEST(InputLimits, SpecialFilesAndPathsOutsideTheSequenceAreRefused) {
   const long before = PeakRssKib();
   ExpectErrorContaining([&] { ReadSensorJson(big); }, {big.string(), "is 100 MiB, more than the 64 MiB"});
   EXPECT_LT((PeakRssKib() - before) / 1024, 16);
+}
+
+// A mesh whose values are damaged (an infinite position, a negative radiance: a bit flip
+// in a float) is refused naming the vertex, not carried on into every export.
+TEST(InputLimits, DamagedMeshValuesAreRefused) {
+  TempDir dir;
+  mesh::Mesh m;
+  m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.normal = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  m.radiance = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+  m.triangles = {{0, 1, 2}};
+  WritePly(dir / "good.ply", m);
+  ASSERT_EQ(ReadPly(dir / "good.ply").position.size(), 3u);
+  const std::string good = test::ReadText(dir / "good.ply");
+  const std::size_t data = good.find("end_header\n") + 11;
+  const std::size_t record = (good.size() - data - 13) / 3;  // three vertices, one face
+  const auto patched = [&](std::size_t vertex, std::size_t offset, float v) {
+    std::string b = good;
+    std::memcpy(&b[data + vertex * record + offset], &v, 4);
+    test::WriteText(dir / "bad.ply", b);
+  };
+  patched(1, 0, std::numeric_limits<float>::infinity());
+  ExpectErrorContaining([&] { ReadPly(dir / "bad.ply"); }, {"bad.ply", "vertex 1", "position or normal"});
+  patched(2, 16, std::numeric_limits<float>::quiet_NaN());  // a normal
+  ExpectErrorContaining([&] { ReadPly(dir / "bad.ply"); }, {"bad.ply", "vertex 2", "position or normal"});
+  patched(0, 27, -5.0f);  // radiance_r
+  ExpectErrorContaining([&] { ReadPly(dir / "bad.ply"); }, {"bad.ply", "vertex 0", "radiance that is negative"});
 }
 
 TEST(InputLimits, MeshAndOpenExrHeadersThatClaimTooMuchAreRefused) {
