@@ -63,6 +63,15 @@ Command AddEvalCommand(CLI::App& app) {
         e.push_back(p.T_world_camera);
         g.push_back(gt_pose[*k]);
       }
+    // Too few poses to compare: say which files and why, not only a count.
+    if (e.size() < 3) {
+      const fs::path est_file = is_project ? fs::path(a->dir) : fs::path(a->dir) / "trajectory.txt";
+      throw InputError(est_file, std::to_string(est.size()) + " poses, of which " + std::to_string(e.size()) +
+                                     " have a ground-truth pose at their timestamp in " +
+                                     (fs::path(a->seq) / "groundtruth.txt").string() + " (" +
+                                     std::to_string(gt_t.size()) +
+                                     " poses there); 3 or more are needed: is this the scan of that sequence?");
+    }
     const eval::TrajectoryError te = eval::CompareTrajectories(e, g);
     json out = {{"pairs", te.pairs},
                 {"ate_rmse_m", te.ate_rmse_m},

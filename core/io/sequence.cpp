@@ -1,7 +1,10 @@
 #include "io/sequence.h"
 
+#include <algorithm>
+
 #include <cstdio>
 
+#include "common/message.h"
 #include "common/error.h"
 #include "io/exr.h"
 #include "io/image_io.h"
@@ -82,6 +85,17 @@ SequenceReader::SequenceReader(const fs::path& folder, SequenceReadOptions optio
   if (frames_.empty())
     throw InputError(folder / "rgb.txt",
                      "no colour frame has a depth frame within 0.02 s in depth.txt");
+  // An exposure list none of whose stamps matches a frame is another recording's (or its
+  // clock is offset): taking every frame as of unknown exposure would hide that.
+  if (!exposures.empty() &&
+      std::none_of(frames_.begin(), frames_.end(), [](const FrameInfo& f) { return f.exposure_ms.has_value(); })) {
+    const auto [lo, hi] = std::minmax_element(exposure_t.begin(), exposure_t.end());
+    throw InputError(folder / "exposure.txt",
+                     "none of its " + std::to_string(exposures.size()) + " timestamps (" + Num(*lo, 6) +
+                         " to " + Num(*hi, 6) + ") is within 0.02 s of a colour frame in rgb.txt (" +
+                         Num(frames_.front().timestamp, 6) + " to " + Num(frames_.back().timestamp, 6) +
+                         "): is it this recording's? (remove it to treat every exposure as unknown)");
+  }
   has_hdr_ = hdr_count == frames_.size();
 }
 

@@ -169,6 +169,22 @@ TEST(Cli, ASecondScanIntoTheSameFolderIsRefused) {
   EXPECT_FALSE(fs::exists(out / ".hdrfusion-lock"));
 }
 
+// eval of a trajectory that does not belong to the sequence (no timestamp in common) names
+// both files and says what is missing, instead of "got 0 poses".
+TEST(Cli, EvalOfAnotherSequencesTrajectoryNamesBothFiles) {
+  test::TempDir dir;
+  const std::string seq = (dir / "seq").string();
+  ASSERT_EQ(RunCli("simulate --out " + seq + " --frames 5 --size 64x48").status, 0);
+  fs::create_directories(dir / "scan");
+  test::WriteText(dir / "scan" / "trajectory.txt",
+                  "1000.0 0 0 0 0 0 0 1\n1000.1 0 0 0 0 0 0 1\n1000.2 0 0 0 0 0 0 1\n1000.3 0 0 0 0 0 0 1\n");
+  const RunResult r = RunCli("eval " + seq + " " + (dir / "scan").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("trajectory.txt: 4 poses, of which 0 have a ground-truth pose"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("groundtruth.txt (5 poses there)"), std::string::npos) << r.output;
+}
+
 TEST(Cli, UnknownSubcommandAndMissingArgumentsFail) {
   EXPECT_NE(RunCli("frobnicate").status, 0);
   EXPECT_NE(RunCli("info").status, 0);

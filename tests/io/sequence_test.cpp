@@ -141,6 +141,22 @@ TEST(Sequence, ReadsForeignTumLayoutAndAssociatesDepth) {
   EXPECT_NEAR(s.depth_max_m, 1.22, 1e-6);
 }
 
+// An exposure list whose stamps match no frame (another recording's, or a clock offset) is
+// refused naming it; before, every frame was silently taken as of unknown exposure and
+// `info` said there was no exposure.txt. One stamp that matches is enough to read it.
+TEST(Sequence, ExposureStampsThatMatchNoFrameAreRefused) {
+  TempDir dir;
+  WriteForeignSequence(dir.path(), 4);
+  WriteText(dir / "exposure.txt", "# timestamp exposure_ms\n1305031902.175304 10\n1305031902.208637 12\n");
+  ExpectErrorContaining([&] { SequenceReader r(dir.path()); },
+                        {"exposure.txt", "none of its 2 timestamps", "1305031902.175304", "1305031102.175304"});
+  WriteText(dir / "exposure.txt", "# timestamp exposure_ms\n1305031102.175304 10\n1305031902.208637 12\n");
+  const SequenceReader r(dir.path());
+  EXPECT_TRUE(r.has_exposure());
+  ASSERT_TRUE(r.frames()[0].exposure_ms.has_value());
+  EXPECT_DOUBLE_EQ(*r.frames()[0].exposure_ms, 10.0);
+}
+
 TEST(Sequence, SizeMismatchWithSensorJsonNamesTheImage) {
   TempDir dir;
   WriteForeignSequence(dir.path(), 3, 8, 6);
