@@ -167,7 +167,7 @@ Command AddCalibrateCommand(CLI::App& app) {
     }
     sensor = run.Apply(sensor);
     const bool have_noise = run.noise_saved();
-    io::WriteSensorJson(a->out, sensor);
+    io::UpdateSensorJson(a->out, sensor);  // other tools' keys in an existing file are kept
     std::printf("\nwrote %s (response%s)\n", a->out.c_str(), have_noise ? " and noise" : " only");
     if (a->save_profile) {
       if (!sensor.device || sensor.device->serial.empty())

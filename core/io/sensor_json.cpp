@@ -183,6 +183,30 @@ void WriteSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
   WriteFileAtomically(file, SensorToJson(s, file.string()).dump(2) + "\n");
 }
 
+void UpdateSensorJson(const std::filesystem::path& file, const SensorInfo& s) {
+  json merged = SensorToJson(s, file.string());
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) {
+    json old;
+    try {
+      old = ReadJsonFile(file);
+    } catch (const Error&) {
+      old = nullptr;  // not JSON: replaced, as asked
+    }
+    if (old.is_object()) {
+      json own_block = merged.contains("hdrfusion") ? merged["hdrfusion"] : json::object();
+      for (auto it = merged.begin(); it != merged.end(); ++it)
+        if (it.key() != "hdrfusion") old[it.key()] = it.value();
+      if (!own_block.empty()) {
+        if (!old.contains("hdrfusion") || !old["hdrfusion"].is_object()) old["hdrfusion"] = json::object();
+        for (auto it = own_block.begin(); it != own_block.end(); ++it) old["hdrfusion"][it.key()] = it.value();
+      }
+      merged = std::move(old);
+    }
+  }
+  WriteFileAtomically(file, merged.dump(2) + "\n");
+}
+
 json SensorToJson(const SensorInfo& s, const std::string& what) {
   const std::string& file = what;
   json j;

@@ -185,6 +185,26 @@ TEST(Cli, EvalOfAnotherSequencesTrajectoryNamesBothFiles) {
   EXPECT_NE(r.output.find("groundtruth.txt (5 poses there)"), std::string::npos) << r.output;
 }
 
+// calibrate SWEEP --out SWEEP/sensor.json completes the sweep's own file: the response and
+// noise are written, and what other tools put there is kept (it was dropped).
+TEST(Cli, CalibrationOverASensorJsonKeepsOtherToolsKeys) {
+  test::TempDir dir;
+  const std::string sweep = (dir / "sweep").string();
+  ASSERT_EQ(RunCli("simulate --out " + sweep + " --sweep --sweep-repeats 3 --size 96x72").status, 0);
+  auto j = nlohmann::json::parse(test::ReadText(dir / "sweep" / "sensor.json"));
+  j["vendor_tool"] = {{"lens", "2.8 mm"}, {"checked", true}};
+  j["hdrfusion"]["note"] = "kept";
+  test::WriteText(dir / "sweep" / "sensor.json", j.dump(2));
+  const RunResult r = RunCli("calibrate " + sweep + " --out " + sweep + "/sensor.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto after = nlohmann::json::parse(test::ReadText(dir / "sweep" / "sensor.json"));
+  EXPECT_EQ(after["vendor_tool"]["lens"], "2.8 mm");
+  EXPECT_EQ(after["hdrfusion"]["note"], "kept");
+  EXPECT_TRUE(after.contains("response"));
+  EXPECT_TRUE(after.contains("noise"));
+  EXPECT_TRUE(io::ReadSensorJson(dir / "sweep" / "sensor.json").response.has_value());
+}
+
 TEST(Cli, UnknownSubcommandAndMissingArgumentsFail) {
   EXPECT_NE(RunCli("frobnicate").status, 0);
   EXPECT_NE(RunCli("info").status, 0);
