@@ -181,6 +181,12 @@ void ScanWorker::OpenProject(const QString& path) {
           live_ = nullptr;
           msg += tr(" — its source has another camera now: choose the source it was scanned with to continue");
           break;
+        case jobs::ContinueFrom::kOtherResponse:
+          source_.reset();
+          live_ = nullptr;
+          msg += tr(" — its source has another camera response now (its calibration changed): choose the source "
+                    "it was scanned with to continue");
+          break;
         case jobs::ContinueFrom::kAfterScanned:
           msg += tr(" — Start continues after frame %1").arg(p.resume.frames);
           break;

@@ -2020,6 +2020,10 @@ Open it to continue or export it?</source>
         <source>Export failed: %1</source>
         <translation>Export fehlgeschlagen: %1</translation>
     </message>
+    <message>
+        <source> — its source has another camera response now (its calibration changed): choose the source it was scanned with to continue</source>
+        <translation> — seine Quelle hat jetzt eine andere Kamerakennlinie (ihre Kalibrierung wurde geändert): wählen Sie die Quelle, mit der gescannt wurde, um fortzufahren</translation>
+    </message>
 </context>
 <context>
     <name>hdrf::gui::SensorPanel</name>

@@ -100,6 +100,10 @@ std::unique_ptr<jobs::ScanJob> MakeJob(const ScanArgs& a, const std::optional<io
                                         std::to_string(sc.height) + " one (fx " + std::to_string(sc.fx) +
                                         "): a scan goes on with the camera it began with");
       }
+      case jobs::ContinueFrom::kOtherResponse:
+        throw InputError(a.resume, "the project was scanned through another camera response than SOURCE gives (" +
+                                        std::string(a.response.empty() ? "its sensor.json" : "--response " + a.response) +
+                                        "): its radiance would not add up; continue with the response it began with");
       case jobs::ContinueFrom::kNothingLeft:
         throw InputError(a.resume, "holds " + std::to_string(scanned) + " frames, more than " +
                                         source.description() + " has: nothing left to scan");

@@ -519,6 +519,15 @@ bool SameCamera(const PinholeCamera& a, const PinholeCamera& b) {
          std::abs(a.cx - b.cx) < 1e-3f && std::abs(a.cy - b.cy) < 1e-3f;
 }
 
+bool SameResponse(const radiometry::InverseResponse& a, const radiometry::InverseResponse& b) {
+  for (int c = 0; c < 3; ++c)
+    for (int l = 0; l < radiometry::kLevels; ++l) {
+      const float x = a.table[std::size_t(c)][std::size_t(l)], y = b.table[std::size_t(c)][std::size_t(l)];
+      if (std::abs(x - y) > 1e-4f * std::max({std::abs(x), std::abs(y), 1e-3f})) return false;
+    }
+  return true;
+}
+
 bool SameSource(const Project& p, const std::string& spec, const std::string& description) {
   if (p.source_spec.empty()) return p.source == description;
   std::error_code ec;

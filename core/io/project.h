@@ -70,6 +70,10 @@ bool SameSource(const Project& project, const std::string& spec, const std::stri
 // Whether a source's camera is the project's (size and intrinsics): a scan goes on only with
 // the camera it began with.
 bool SameCamera(const PinholeCamera& a, const PinholeCamera& b);
+// Whether two responses are the same curve (every level within 1e-4 relatively): the model's
+// radiance is in the units of the response it was scanned with, and frames converted
+// through another would be fused as if they were the same light.
+bool SameResponse(const radiometry::InverseResponse& a, const radiometry::InverseResponse& b);
 
 // Recovery files: where autosaves of unfinished scans go (XDG state home,
 // $XDG_STATE_HOME/hdrfusion/recovery, else ~/.local/state/hdrfusion/recovery), and the ones

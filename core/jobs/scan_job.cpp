@@ -129,6 +129,9 @@ void ScanJob::SetSource(const std::string& description, const std::string& spec)
 
 ContinueFrom ScanJob::Continue(const io::Project& project, pipeline::FrameSource& source, const std::string& spec) {
   if (!io::SameCamera(source.sensor().camera, project.sensor.camera)) return ContinueFrom::kOtherCamera;
+  const auto& a = source.sensor().response;
+  const auto& b = project.sensor.response;
+  if (a.has_value() != b.has_value() || (a && !io::SameResponse(*a, *b))) return ContinueFrom::kOtherResponse;
   same_source_ = io::SameSource(project, spec, source.description());
   spec_ = same_source_ && !project.source_spec.empty() ? project.source_spec : spec;
   // The same bounded source goes on where the scan stopped.

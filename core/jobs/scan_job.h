@@ -26,6 +26,7 @@ enum class ContinueFrom {
   kFirstFrame,    // another (or a live) source, from its first frame: where the scan stopped
   kNothingLeft,   // the project's own source has no frames beyond those already scanned
   kOtherCamera,   // the source's camera is not the one the scan began with: it cannot go on
+  kOtherResponse, // the source's response is not the one the scan began with: it cannot go on
 };
 
 // What WriteOutputs wrote.

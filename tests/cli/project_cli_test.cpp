@@ -85,6 +85,20 @@ TEST_F(ProjectCli, SaveResumeExportAndEval) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("half.hdrproj"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("160x120 camera"), std::string::npos) << r.output;
+  // Nor through another response: the same recording with its calibration taken away,
+  // read as sRGB, would fuse radiance in other units into the same model.
+  const std::string uncal = (dir / "uncal").string();
+  fs::copy(seq, uncal, fs::copy_options::recursive);
+  {
+    auto j = nlohmann::json::parse(test::ReadText(fs::path(uncal) / "sensor.json"));
+    j.erase("response");
+    test::WriteText(fs::path(uncal) / "sensor.json", j.dump(2));
+  }
+  r = RunCli("scan --resume " + half + " " + uncal + " --response srgb --out " + (dir / "c").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("another camera response"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("half.hdrproj"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "c" / "trajectory.txt"));
   // Nor with settings that change its model.
   r = RunCli("scan --resume " + half + " " + seq + " --out " + (dir / "c").string() + " --voxel-size 0.01");
   EXPECT_NE(r.status, 0);
