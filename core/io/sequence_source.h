@@ -18,7 +18,11 @@ class SequenceFrameSource : public pipeline::FrameSource {
     f.color = std::move(fr.color);
     f.depth_m = std::move(fr.depth_m);
     f.timestamp = fr.info.timestamp;
+    // The signal grows with exposure time times analog gain (a linear factor of the sensor's
+    // amplifier): the engine takes the product as the frame's exposure, so a gain that
+    // changes between frames is not mistaken for a change of the light.
     f.exposure_ms = fr.info.exposure_ms;
+    if (f.exposure_ms && fr.info.gain) *f.exposure_ms *= *fr.info.gain;
     f.T_world_camera_true = fr.info.T_world_camera;
     return true;
   }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <vector>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -8,6 +9,7 @@
 #include "io/exr.h"
 #include "io/image_io.h"
 #include "io/sequence.h"
+#include "io/sequence_source.h"
 #include "io/sequence_summary.h"
 #include "io/source_spec.h"
 #include "support/test_support.h"
@@ -155,6 +157,25 @@ TEST(Sequence, ExposureStampsThatMatchNoFrameAreRefused) {
   EXPECT_TRUE(r.has_exposure());
   ASSERT_TRUE(r.frames()[0].exposure_ms.has_value());
   EXPECT_DOUBLE_EQ(*r.frames()[0].exposure_ms, 10.0);
+}
+
+// A sequence whose analog gain changes: the scan is told exposure x gain, so doubling the
+// gain at half the exposure time reads as the same exposure (it read as half, and the
+// engine's exposure check took the light to have halved).
+TEST(Sequence, AnalogGainIsPartOfTheExposureTheScanIsTold) {
+  TempDir dir;
+  WriteForeignSequence(dir.path(), 3);
+  WriteText(dir / "exposure.txt",
+            "# timestamp exposure_ms analog_gain\n1305031102.175304 10 1\n1305031102.208637 5 2\n"
+            "1305031102.241970 10 4\n");
+  SequenceFrameSource src(dir.path());
+  pipeline::FrameInput f;
+  std::vector<double> e;
+  while (src.Next(f)) e.push_back(f.exposure_ms.value_or(-1));
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_DOUBLE_EQ(e[0], 10.0);
+  EXPECT_DOUBLE_EQ(e[1], 10.0);
+  EXPECT_DOUBLE_EQ(e[2], 40.0);
 }
 
 TEST(Sequence, SizeMismatchWithSensorJsonNamesTheImage) {
