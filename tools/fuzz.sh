@@ -26,7 +26,7 @@ while [ $# -gt 0 ]; do
     *) targets+=("$1"); shift ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(text_lists sensor_json options_json ply image exr project)
+[ ${#targets[@]} -gt 0 ] || targets=(text_lists sensor_json options_json ply image exr project emor)
 command -v clang++-14 >/dev/null || { echo "fuzz.sh: clang++-14 is missing (apt-get install clang libclang-rt-14-dev libomp-14-dev)" >&2; exit 1; }
 
 cmake --preset fuzz >/dev/null

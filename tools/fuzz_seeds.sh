@@ -8,7 +8,11 @@ set -euo pipefail
 cli="$1" out="$2"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 rm -rf "$out"
-mkdir -p "$out"/{text_lists,sensor_json,options_json,ply,image,exr,project}
+mkdir -p "$out"/{text_lists,sensor_json,options_json,ply,image,exr,project,emor}
+# An EMoR basis in the distribution's layout: named blocks of 1024 values (E, f0, h(1), h(2)).
+awk 'BEGIN { n = split("E f0 h(1) h(2)", names, " ");
+  for (b = 1; b <= n; ++b) { print names[b] " = "; for (i = 0; i < 1024; ++i) printf "%.6e%s", (b == 1 ? i / 1023 : (b == 2 ? (i / 1023) ^ 0.45 : 0.01 * sin(b * i / 160))), (i % 8 == 7 ? "\n" : " ") } }' \
+  > "$out/emor/invemor.txt"
 cp "$root"/resources/sensors/*.json "$out/sensor_json/"
 printf '{"tracker": {"kind": "nr+icp", "frame_to_model": true}, "volume": {"voxel_m": 0.02, "tau0": 0.5}}\n' \
   > "$out/options_json/a.json"

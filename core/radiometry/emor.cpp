@@ -39,7 +39,10 @@ EmorBasis EmorBasis::Load(const std::filesystem::path& file) {
     if (blocks.empty()) throw InputError(file, line_no, "data before the first 'name =' header");
     std::istringstream ss(line);
     double v;
-    while (ss >> v) blocks.back().push_back(v);
+    while (ss >> v) {
+      if (!std::isfinite(v)) throw InputError(file, line_no, "a value is not a finite number");
+      blocks.back().push_back(v);
+    }
   }
   if (blocks.size() < 3) throw InputError(file, "expected B, g0 and hinv blocks, found " + std::to_string(blocks.size()));
   for (std::size_t k = 0; k < blocks.size(); ++k)
