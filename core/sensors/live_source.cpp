@@ -29,12 +29,17 @@ bool OnOff(const std::string& key, const std::string& v) {
   throw SettingError(key, "expected on or off, got '" + v + "'");
 }
 
-pipeline::FrameInput ToInput(const LiveFrame& f, double depth_scale, std::optional<double> exposure_ms) {
+// The engine is told exposure time x analog gain (`gain`: a linear factor, 1 at the device's
+// unit gain) as the frame's exposure: the signal grows with both, and only ratios matter. A
+// recording scanned later is told the same (io::SequenceFrameSource).
+pipeline::FrameInput ToInput(const LiveFrame& f, double depth_scale, std::optional<double> exposure_ms,
+                             std::optional<double> gain) {
   pipeline::FrameInput in;
   in.color = f.color.Clone();
   in.depth_m = io::DepthToMetres(f.depth_mm, depth_scale);
   in.timestamp = f.timestamp;
   in.exposure_ms = exposure_ms;
+  if (in.exposure_ms && gain) *in.exposure_ms *= *gain;
   return in;
 }
 
@@ -134,7 +139,9 @@ LiveFrame LiveFrameSource::NextFrame() {
 bool LiveFrameSource::Next(pipeline::FrameInput& frame) {
   if (options_.frames > 0 && delivered_ >= options_.frames) return false;
   last_ = NextFrame();
-  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_));
+  // OpenNI2 gives gain in hundredths (100: unit gain), as the recorders write it (/ 100).
+  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_),
+                  last_.gain ? std::optional<double>(*last_.gain / 100.0) : std::nullopt);
   return true;
 }
 
@@ -277,9 +284,10 @@ bool OniPlaybackSource::Next(pipeline::FrameInput& frame) {
   while (m.delivered + m.pairer->unpaired_color() < m.frames) {
     if (std::optional<LiveFrame> f = m.pairer->Pop()) {
       ++m.delivered;
-      std::optional<double> exposure;
-      if (auto it = m.exposures.find(Fingerprint(f->color)); it != m.exposures.end()) exposure = it->second.first;
-      frame = ToInput(*f, m.sensor.depth_scale, exposure);
+      std::optional<double> exposure, gain;
+      if (auto it = m.exposures.find(Fingerprint(f->color)); it != m.exposures.end())
+        exposure = it->second.first, gain = it->second.second;
+      frame = ToInput(*f, m.sensor.depth_scale, exposure, gain);
       return true;
     }
     openni::VideoStream* streams[2] = {&m.color, &m.depth};

@@ -30,6 +30,7 @@
 #include "gui/main_window.h"
 #include "gui/sensor_panel.h"
 #include "gui/vtk_view.h"
+#include "io/sequence.h"
 #include "io/source_spec.h"
 #include "sensors/profiles.h"
 #include "sim/builtin_sensor.h"
@@ -144,8 +145,15 @@ TEST(StudioLive, ListsOnPlugEventsPreviewsControlsAndRecords) {
   pipeline::FrameInput f;
   ASSERT_TRUE(seq->Next(f));
   EXPECT_EQ(f.color.width(), 640);
-  ASSERT_TRUE(f.exposure_ms.has_value());  // auto exposure was off: each frame's exposure kept
-  EXPECT_NEAR(*f.exposure_ms, 8.0, 1e-6);
+  // Auto exposure was off: each frame's exposure and gain kept, and a scan of the recording
+  // is told their product (8 ms at gain 200, twice the unit gain: 16).
+  ASSERT_TRUE(f.exposure_ms.has_value());
+  EXPECT_NEAR(*f.exposure_ms, 16.0, 1e-6);
+  const io::SequenceReader reader(folder.toStdString());
+  ASSERT_TRUE(reader.frames()[0].exposure_ms.has_value());
+  EXPECT_NEAR(*reader.frames()[0].exposure_ms, 8.0, 1e-6);
+  ASSERT_TRUE(reader.frames()[0].gain.has_value());
+  EXPECT_NEAR(*reader.frames()[0].gain, 2.0, 1e-9);
 }
 
 TEST(StudioLive, UnplugDuringAScanPausesAndKeepsTheModelReplugResumes) {
