@@ -38,6 +38,11 @@ trap 'rm -f "$tmp"' EXIT
     cat "$f"
     printf '\n'
   done
+  if [ ${#gpu[@]} -eq 0 ]; then
+    printf '## GPU\n\nNo GPU tables at this commit: no machine with an NVIDIA GPU was run\n'
+    printf '(`tools/gpu_check.sh` there, then `--gpu` here). The CUDA backend is checked against the\n'
+    printf 'CPU stage by stage by the `gpu` tests wherever a GPU is present.\n\n'
+  fi
   for suite in engine sim tonemap export record; do
     echo "performance: $suite" >&2
     "$cli" bench --suite "$suite" --markdown $([ "$suite" = engine ] && echo "--device cpu")

@@ -44,8 +44,8 @@ int BenchExport(int frames, const std::string& scan_dir) {
   const fs::path tmp = fs::temp_directory_path() / ("hdrfusion-bench-export-" + std::to_string(::getpid()));
   std::printf("export of %s: %zu triangles in, %zu keyframes, %d OpenMP threads\n\n", scan.source.c_str(),
               scan.mesh.triangles.size(), scan.keyframes ? scan.keyframes->keyframes.size() : 0, omp_get_max_threads());
-  std::printf("%-22s %8s %10s %8s %9s %9s %9s %9s %9s %8s\n", "texture", "tris", "texels", "charts", "clean s", "atlas s",
-              "views s", "bake s", "write s", "total s");
+  std::printf("| texture | triangles | texels | charts | clean-up s | atlas s | views s | bake s | write s | total s |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n");
   for (int mode = 0; mode < 2; ++mode) {
     io::AssetOptions o;
     if (mode == 1) o.atlas.fit_size = 4096;
@@ -66,7 +66,7 @@ int BenchExport(int frames, const std::string& scan_dir) {
     char label[64];
     std::snprintf(label, sizeof label, "%s %dx%d", mode == 0 ? "2 mm" : "fit 4096", r.atlas_width, r.atlas_height);
     const long charts = nlohmann::json::parse(r.report_json)["texture"]["charts"].get<long>();
-    std::printf("%-22s %8zu %10ld %8ld %9.2f %9.2f %9.2f %9.2f %9.2f %8.2f\n", label, r.triangles,
+    std::printf("| %s | %zu | %ld | %ld | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", label, r.triangles,
                 r.texels_from_frames + r.texels_from_volume, charts, spent["clean-up"], spent["UV atlas"],
                 spent["keyframes"], spent["texture"], spent["writing"], total);
     std::error_code ec;
