@@ -6,6 +6,7 @@
 #include <QMenu>
 #include <QMessageBox>
 #include <QLocale>
+#include <QFontMetrics>
 #include <QPainter>
 #include <QSet>
 #include <QVBoxLayout>
@@ -73,8 +74,25 @@ void ImageView::paintEvent(QPaintEvent*) {
       p.drawLine(x0, y0 + i, x0 + 12, y0 + i);
     }
     p.setPen(Qt::white);
-    p.drawText(x0 + 14, y0 + 8, QLocale().toString(bar_max_, 'g', 2));
-    p.drawText(x0 + 14, y0 + h, QLocale().toString(bar_min_, 'g', 2));
+    // A label wider than the space beside the bar ("1e-06") is drawn smaller, not cut off.
+    const auto label = [&](int y, double v) {
+      const QString text = QLocale().toString(v, 'g', 2);
+      const int room = width() - (x0 + 14) - 1;
+      QFont f = p.font();
+      const bool points = f.pointSizeF() > 0;
+      for (int step = 0; step < 8 && QFontMetrics(f).horizontalAdvance(text) > room; ++step) {
+        if (points) f.setPointSizeF(std::max(5.0, f.pointSizeF() - 0.5));
+        else f.setPixelSize(std::max(7, f.pixelSize() - 1));
+      }
+      p.save();
+      p.setFont(f);
+      // Still too wide: it ends at the view's edge, over the bar, rather than past it.
+      const int advance = QFontMetrics(f).horizontalAdvance(text);
+      p.drawText(advance > room ? width() - 1 - advance : x0 + 14, y, text);
+      p.restore();
+    };
+    label(y0 + 8, bar_max_);
+    label(y0 + h, bar_min_);
     p.drawText(x0, y0 + h + 14, bar_unit_);
   }
 }
