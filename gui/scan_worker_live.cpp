@@ -71,7 +71,7 @@ void ScanWorker::OnLiveFrame(const sensors::LiveFrame& f) {
   }
   last_frame_time_ = f.timestamp;
   const std::optional<double> ms = live_->ExposureMs(f);
-  const std::optional<double> gain = f.gain ? std::optional<double>(*f.gain / 100.0) : std::nullopt;
+  const std::optional<double> gain = f.GainFactor();
   if (recorder_) {
     recorder_->Push(f.Clone(), ms, gain);
     if (recorder_->failed()) FinishRecording(QString());

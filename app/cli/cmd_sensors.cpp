@@ -114,7 +114,7 @@ Command AddRecordCommand(CLI::App& app) {
           break;
         sensors::LiveFrame lf = live.NextFrame();
         const auto ms = live.ExposureMs(lf);
-        const std::optional<double> gain = lf.gain ? std::optional<double>(*lf.gain / 100.0) : std::nullopt;
+        const std::optional<double> gain = lf.GainFactor();
         if (seq) {
           seq->Push(std::move(lf), ms, gain);
           if (seq->failed()) break;

@@ -185,7 +185,7 @@ PreparedMesh PrepareMesh(const ScanData& scan, const AssetOptions& o) {
     throw InputError(scan.source, "the scan's mesh has no triangles: there is nothing to export");
   p.c = mesh::Clean(scan.mesh, co);
   mesh::CleanMesh& c = p.c;
-  // (An empty mesh went on to write a 0x0 texture, and the error named a hidden staging file.)
+  // Said here, naming the setting: an empty mesh would reach the texture writer as a 0x0 image.
   if (c.mesh.triangles.empty())
     throw SettingError("min-piece-area", "nothing is left after the clean-up: every piece of the mesh is smaller than " +
                                              Sig(co.min_piece_area, 4) + " m² (export keeps pieces at least that large)");

@@ -62,6 +62,14 @@ void Save(const std::filesystem::path& file, const cv::Mat& m) {
 
 }  // namespace
 
+HeaderCheck ExpectSize(const std::filesystem::path& file, int width, int height) {
+  return [file, width, height](int w, int h) {
+    if (w != width || h != height)
+      throw InputError(file, "image is " + std::to_string(w) + "x" + std::to_string(h) + " but sensor.json says " +
+                                 std::to_string(width) + "x" + std::to_string(height));
+  };
+}
+
 ColorImage ReadColorImage(const std::filesystem::path& file, const HeaderCheck& check_header) {
   cv::Mat m = Load(file, check_header);
   if (m.depth() != CV_8U)

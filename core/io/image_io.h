@@ -15,6 +15,10 @@ namespace hdrf::io {
 // after, for formats whose header is not read): throws to refuse the image.
 using HeaderCheck = std::function<void(int width, int height)>;
 
+// The check every frame reader makes: the image is `width` x `height`, the camera's size in
+// sensor.json ("image is WxH but sensor.json says WxH", naming `file`).
+HeaderCheck ExpectSize(const std::filesystem::path& file, int width, int height);
+
 // 8-bit, 3-channel colour (an alpha channel is dropped). Throws InputError naming the file
 // when it is missing, not a regular file, larger than common/input_file.h allows (bytes, or
 // pixels from its header, or more than the free memory holds), unreadable, or has the wrong

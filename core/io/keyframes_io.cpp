@@ -68,16 +68,8 @@ KeyframeSet ReadKeyframes(const fs::path& dir) {
       const std::string rel = k.at("file").get<std::string>();
       if (rel.find("..") != std::string::npos || fs::path(rel).is_absolute())
         throw InputError(file, "keyframe " + std::to_string(f.index) + ": file must lie inside the scan folder");
-      const PinholeCamera& cam = set.sensor.camera;
-      f.color = ReadColorImage(dir / rel, [&](int w, int h) {  // from the header, before decoding
-        if (w != cam.width || h != cam.height)
-          throw InputError(dir / rel, "is " + std::to_string(w) + "x" + std::to_string(h) + ", the camera in sensor.json " +
-                                          std::to_string(cam.width) + "x" + std::to_string(cam.height));
-      });
-      if (f.color.width() != set.sensor.camera.width || f.color.height() != set.sensor.camera.height)
-        throw InputError(dir / rel, "is " + std::to_string(f.color.width()) + "x" + std::to_string(f.color.height()) +
-                                        ", the camera in sensor.json " + std::to_string(set.sensor.camera.width) + "x" +
-                                        std::to_string(set.sensor.camera.height));
+      // The size is checked from the header, before decoding (and again after).
+      f.color = ReadColorImage(dir / rel, ExpectSize(dir / rel, set.sensor.camera.width, set.sensor.camera.height));
       set.keyframes.push_back(std::move(f));
     }
   } catch (const json::exception& e) {

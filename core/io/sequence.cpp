@@ -107,16 +107,9 @@ Frame SequenceReader::ReadFrame(std::size_t i) const {
   f.info = frames_[i];
   const PinholeCamera& cam = sensor_.camera;
   // The size is checked from the header, before a frame is decoded.
-  auto check_size = [&](const fs::path& p) {
-    return [&cam, p](int w, int h) {
-      if (w != cam.width || h != cam.height)
-        throw InputError(p, "image is " + std::to_string(w) + "x" + std::to_string(h) + " but sensor.json says " +
-                                std::to_string(cam.width) + "x" + std::to_string(cam.height));
-    };
-  };
-  f.color = ReadColorImage(f.info.color_path, check_size(f.info.color_path));
+  f.color = ReadColorImage(f.info.color_path, ExpectSize(f.info.color_path, cam.width, cam.height));
   if (!f.info.depth_path.empty()) {
-    const DepthRawImage raw = ReadDepthImage(f.info.depth_path, check_size(f.info.depth_path));
+    const DepthRawImage raw = ReadDepthImage(f.info.depth_path, ExpectSize(f.info.depth_path, cam.width, cam.height));
     f.depth_m = DepthToMetres(raw, sensor_.depth_scale);
   }
   return f;

@@ -46,17 +46,9 @@ radiometry::Sweep ReadSweep(const std::filesystem::path& folder) {
       throw InputError(folder / "exposure.txt",
                        std::string("no exposure for colour frame at timestamp ") + buf);
     }
-    // The size is checked from the header, before a frame is decoded.
+    // The size is checked from the header, before a frame is decoded (and again after).
     const PinholeCamera& cam = seq.sensor().camera;
-    s.images.push_back(ReadColorImage(f.color_path, [&](int w, int h) {
-      if (w != cam.width || h != cam.height)
-        throw InputError(f.color_path, "image is " + std::to_string(w) + "x" + std::to_string(h) +
-                                           " but sensor.json says " + std::to_string(cam.width) + "x" +
-                                           std::to_string(cam.height));
-    }));
-    const auto& im = s.images.back();
-    if (im.width() != seq.sensor().camera.width || im.height() != seq.sensor().camera.height)
-      throw InputError(f.color_path, "image size does not match sensor.json");
+    s.images.push_back(ReadColorImage(f.color_path, ExpectSize(f.color_path, cam.width, cam.height)));
     s.exposure_ms.push_back(*f.exposure_ms);
   }
   return s;

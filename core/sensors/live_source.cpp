@@ -139,9 +139,7 @@ LiveFrame LiveFrameSource::NextFrame() {
 bool LiveFrameSource::Next(pipeline::FrameInput& frame) {
   if (options_.frames > 0 && delivered_ >= options_.frames) return false;
   last_ = NextFrame();
-  // OpenNI2 gives gain in hundredths (100: unit gain), as the recorders write it (/ 100).
-  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_),
-                  last_.gain ? std::optional<double>(*last_.gain / 100.0) : std::nullopt);
+  frame = ToInput(last_, profile_.sensor.depth_scale, ExposureMs(last_), last_.GainFactor());
   return true;
 }
 

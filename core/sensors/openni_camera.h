@@ -53,10 +53,13 @@ struct LiveFrame {
   double timestamp = 0;            // seconds, device clock
   int index = 0;                   // the device's colour frame number
   std::optional<int> exposure_raw; // in force when the frame was taken (AE off, settled)
-  std::optional<int> gain;
+  std::optional<int> gain;          // OpenNI2's units: hundredths (100 is unit gain)
   LiveFrame Clone() const {
     return {color.Clone(), depth_mm.Clone(), timestamp, index, exposure_raw, gain};
   }
+  // The gain as a linear factor (1 at unit gain), as recordings store it and the engine
+  // multiplies a frame's exposure by it.
+  std::optional<double> GainFactor() const { return gain ? std::optional<double>(*gain / 100.0) : std::nullopt; }
 };
 
 // OpenNI2 is initialised once per process and never shut down (driver threads outlive

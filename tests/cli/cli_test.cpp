@@ -186,7 +186,7 @@ TEST(Cli, EvalOfAnotherSequencesTrajectoryNamesBothFiles) {
 }
 
 // calibrate SWEEP --out SWEEP/sensor.json completes the sweep's own file: the response and
-// noise are written, and what other tools put there is kept (it was dropped).
+// noise are written, and what other tools put there is kept.
 TEST(Cli, CalibrationOverASensorJsonKeepsOtherToolsKeys) {
   test::TempDir dir;
   const std::string sweep = (dir / "sweep").string();
@@ -777,8 +777,7 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --crop 0,0,0,1,1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--crop"), std::string::npos) << r.output;
-  // A clean-up that leaves nothing: said so, naming the setting (it wrote a 0x0 texture and
-  // named a hidden staging file).
+  // A clean-up that leaves nothing: said so, naming the setting, never a staging file.
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --min-piece-area 1e9");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("nothing is left after the clean-up"), std::string::npos) << r.output;
@@ -786,8 +785,8 @@ TEST(Cli, ExportCleansAndLevelsAScan) {
   r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --tone mantiuk08,peak=1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("peak"), std::string::npos) << r.output;
-  // A frame the scan does not have, with or without a render (without one it crashed after
-  // the whole export, leaving its staging folder): refused before any work, naming the range.
+  // A frame the scan does not have, with or without a render (the range is checked whether or
+  // not a render is asked for): refused before any work, naming the range.
   for (const std::string frame : {"100000000", "30"})
     for (const std::string render : {"", " --render 64x48"}) {
       r = RunCli("export " + (dir / "scan").string() + " --out " + (dir / "x").string() + " --render-frame " + frame + render);

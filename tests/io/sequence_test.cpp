@@ -144,8 +144,8 @@ TEST(Sequence, ReadsForeignTumLayoutAndAssociatesDepth) {
 }
 
 // An exposure list whose stamps match no frame (another recording's, or a clock offset) is
-// refused naming it; before, every frame was silently taken as of unknown exposure and
-// `info` said there was no exposure.txt. One stamp that matches is enough to read it.
+// refused naming it, rather than every frame being taken as of unknown exposure. One stamp
+// that matches is enough to read it.
 TEST(Sequence, ExposureStampsThatMatchNoFrameAreRefused) {
   TempDir dir;
   WriteForeignSequence(dir.path(), 4);
@@ -160,8 +160,7 @@ TEST(Sequence, ExposureStampsThatMatchNoFrameAreRefused) {
 }
 
 // A sequence whose analog gain changes: the scan is told exposure x gain, so doubling the
-// gain at half the exposure time reads as the same exposure (it read as half, and the
-// engine's exposure check took the light to have halved).
+// gain at half the exposure time reads as the same exposure, not as the light halving.
 TEST(Sequence, AnalogGainIsPartOfTheExposureTheScanIsTold) {
   TempDir dir;
   WriteForeignSequence(dir.path(), 3);
